@@ -1,0 +1,554 @@
+#include "app/case_schema.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+#include "app/case_config.hpp"
+
+namespace granvv::app {
+
+// ---------------------------------------------------------------------------------------------
+// The schema. One row per key: key, type, default, constraint, description.
+// ---------------------------------------------------------------------------------------------
+namespace {
+constexpr auto kReal = ValueType::real;
+constexpr auto kInteger = ValueType::integer;
+constexpr auto kBoolean = ValueType::boolean;
+constexpr auto kString = ValueType::string;
+constexpr auto kReals = ValueType::real_array;
+constexpr auto kIntegers = ValueType::integer_array;
+const Default kRequired = Default::required();
+const Default kFileStem = Default::file_stem();
+const Default kEmpty = Default::empty_array();
+}  // namespace
+
+const std::vector<KeySpec>& case_schema() {
+  static const std::vector<KeySpec> rows = {
+      // [case]
+      {"case.name", kString, kFileStem, name_like(), "scene name; output goes to out/<name>"},
+      {"case.description", kString, "", any_value(), "one-line description for `granvv list`"},
+      {"case.reference", kString, "", any_value(),
+       "paper, figure or equation the scene reproduces"},
+
+      // [physics]
+      {"physics.K", kReal, kRequired, positive(),
+       "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0)"},
+      {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
+
+      // [initial]
+      {"initial.type", kString, "single_mode",
+       one_of({"uniform", "single_mode", "random_modes", "linear_mode"}), "initial condition"},
+      {"initial.velocity_amplitude", kReal, -0.05, any_value(),
+       "single_mode: v = a sin(2 pi mode x), amplitude a"},
+      {"initial.mode", kInteger, 1, at_least(1), "single_mode/linear_mode: wave number k"},
+      {"initial.random_modes", kInteger, 300, at_least(1),
+       "random_modes: number of Fourier modes in the perturbation"},
+      {"initial.random_amplitude", kReal, 1e-3, non_negative(),
+       "random_modes: rms relative amplitude of the perturbation"},
+      {"initial.seed", kInteger, 1, at_least(0), "random_modes: random seed"},
+      {"initial.linear_amplitude", kReal, 1e-6, positive(),
+       "linear_mode: amplitude of the linear eigenmode"},
+      {"initial.linear_branch", kInteger, 0, closed_closed(0, 2),
+       "linear_mode: eigenvalue branch, 0 = most unstable"},
+
+      // [hydro]
+      {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
+      {"hydro.t_end", kReal, 4.0, positive(), "end time of the hydro run"},
+      {"hydro.output_times", kReals, kEmpty, increasing(non_negative()),
+       "times at which fields are written"},
+      {"hydro.cfl", kReal, 2.0, open_closed(0, 20),
+       "acoustic Courant number (pressure is implicit in its adiabatic part, so > 1 is stable)"},
+      {"hydro.max_compression", kReal, 0.1, open_closed(0, 0.5),
+       "largest relative change of a cell width per step"},
+      {"hydro.max_temperature_change", kReal, 0.2, open_open(0, 1),
+       "largest relative change of a cell temperature per step"},
+      {"hydro.dt_max", kReal, 0.05, positive(), "largest time step"},
+      {"hydro.stop_density", kReal, 1e6, greater_than(1),
+       "stop (singularity) when the peak density exceeds this"},
+      {"hydro.min_cell_width", kReal, 1e-14, positive(),
+       "stop (singularity) when a cell gets narrower than this"},
+      {"hydro.transverse_velocity", kBoolean, false, any_value(),
+       "evolve the transverse velocity v_y"},
+      {"hydro.node_offset", kReal, 0.5, closed_open(0, 1),
+       "position of the first node in units of the cell width"},
+      {"hydro.progress_seconds", kReal, 2.0, positive(),
+       "wall-clock seconds between progress lines"},
+      {"hydro.series_every", kInteger, 1, at_least(1), "write the time series every N steps"},
+
+      // [analysis]
+      {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),
+       "lowest peak density used in the singularity-time fit"},
+      {"analysis.tau_fit_max_density", kReal, 1e4, greater_than(1),
+       "highest peak density used in the singularity-time fit"},
+      {"analysis.profile_fit_x_min", kReal, 1e-3, positive(),
+       "smallest distance from the peak used in the profile fit"},
+      {"analysis.profile_fit_x_max", kReal, 2e-2, positive(),
+       "largest distance from the peak used in the profile fit"},
+      {"analysis.collapse_tolerance", kReal, 0.015, positive(),
+       "relative tolerance of the self-similar profile collapse"},
+
+      // [convergence]
+      {"convergence.cells", kIntegers, kEmpty, increasing(at_least(4)),
+       "cell counts of the convergence study (empty = no study)"},
+      {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
+  };
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cross-key checks.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+// 2 = --set, 1 = case file, 0 = default: blame the key the user touched last.
+int origin_rank(const CaseConfig& c, const std::string& key) {
+  const std::string o = c.origin(key);
+  if (o.rfind("--set", 0) == 0) return 2;
+  return o == "default" ? 0 : 1;
+}
+
+std::string from(const CaseConfig& c, const std::string& key) {
+  const std::string o = c.origin(key);
+  return o == "default" ? "(default)" : "(from " + o + ")";
+}
+
+// lo_key < hi_key (both reals).
+CrossCheck strictly_less(std::string lo_key, std::string hi_key) {
+  CrossCheck check;
+  check.rule = lo_key + " < " + hi_key;
+  check.check = [lo_key, hi_key](const CaseConfig& c) -> std::optional<CrossViolation> {
+    const double lo = c.real(lo_key), hi = c.real(hi_key);
+    if (lo < hi) return std::nullopt;
+    if (origin_rank(c, hi_key) > origin_rank(c, lo_key)) {
+      return CrossViolation{
+          hi_key, "must be > " + lo_key + " = " + format_real(lo) + " " + from(c, lo_key)};
+    }
+    return CrossViolation{lo_key,
+                          "must be < " + hi_key + " = " + format_real(hi) + " " + from(c, hi_key)};
+  };
+  return check;
+}
+
+CrossCheck output_times_within_run() {
+  CrossCheck check;
+  check.rule = "every hydro.output_times <= hydro.t_end";
+  check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
+    const double t_end = c.real("hydro.t_end");
+    const std::vector<double> times = c.reals("hydro.output_times");
+    if (times.empty() || times.back() <= t_end) return std::nullopt;  // times are increasing
+    if (origin_rank(c, "hydro.t_end") > origin_rank(c, "hydro.output_times")) {
+      return CrossViolation{"hydro.t_end", "must be >= every hydro.output_times, the last being " +
+                                               format_real(times.back()) + " " +
+                                               from(c, "hydro.output_times")};
+    }
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      if (times[i] > t_end) {
+        return CrossViolation{"hydro.output_times",
+                              "every element must be <= hydro.t_end = " + format_real(t_end) + " " +
+                                  from(c, "hydro.t_end") + ", but element " +
+                                  std::to_string(i + 1) + " is " + format_real(times[i])};
+      }
+    }
+    return std::nullopt;
+  };
+  return check;
+}
+
+}  // namespace
+
+const std::vector<CrossCheck>& case_cross_checks() {
+  static const std::vector<CrossCheck> rows = {
+      output_times_within_run(),
+      strictly_less("analysis.tau_fit_min_density", "analysis.tau_fit_max_density"),
+      strictly_less("analysis.profile_fit_x_min", "analysis.profile_fit_x_max"),
+      // convergence.cells (strictly increasing, each >= 4) is a per-key constraint above.
+  };
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Machinery.
+// ---------------------------------------------------------------------------------------------
+std::string KeySpec::section() const {
+  const auto dot = key.rfind('.');
+  return dot == std::string::npos ? std::string() : key.substr(0, dot);
+}
+
+std::string KeySpec::leaf() const {
+  const auto dot = key.rfind('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+const KeySpec* find_key_spec(std::string_view key) {
+  for (const KeySpec& spec : case_schema()) {
+    if (spec.key == key) return &spec;
+  }
+  return nullptr;
+}
+
+bool is_schema_table(std::string_view path) {
+  if (path.empty()) return true;
+  for (const KeySpec& spec : case_schema()) {
+    const std::string_view k = spec.key;
+    if (k.size() > path.size() && k.substr(0, path.size()) == path && k[path.size()] == '.') {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> schema_children(std::string_view path) {
+  std::vector<std::string> out;
+  for (const KeySpec& spec : case_schema()) {
+    std::string_view rest = spec.key;
+    if (!path.empty()) {
+      if (rest.size() <= path.size() || rest.substr(0, path.size()) != path ||
+          rest[path.size()] != '.') {
+        continue;
+      }
+      rest.remove_prefix(path.size() + 1);
+    }
+    std::string child(rest.substr(0, rest.find('.')));
+    if (std::find(out.begin(), out.end(), child) == out.end()) out.push_back(std::move(child));
+  }
+  return out;
+}
+
+Constraint any_value() {
+  return {};
+}
+Constraint positive() {
+  return greater_than(0);
+}
+Constraint non_negative() {
+  return at_least(0);
+}
+Constraint greater_than(double lo) {
+  Constraint c;
+  c.min = lo;
+  c.min_exclusive = true;
+  return c;
+}
+Constraint at_least(double lo) {
+  Constraint c;
+  c.min = lo;
+  return c;
+}
+namespace {
+Constraint interval(double lo, bool lo_open, double hi, bool hi_open) {
+  Constraint c;
+  c.min = lo;
+  c.min_exclusive = lo_open;
+  c.max = hi;
+  c.max_exclusive = hi_open;
+  return c;
+}
+}  // namespace
+Constraint open_open(double lo, double hi) {
+  return interval(lo, true, hi, true);
+}
+Constraint open_closed(double lo, double hi) {
+  return interval(lo, true, hi, false);
+}
+Constraint closed_open(double lo, double hi) {
+  return interval(lo, false, hi, true);
+}
+Constraint closed_closed(double lo, double hi) {
+  return interval(lo, false, hi, false);
+}
+Constraint one_of(std::vector<std::string> choices) {
+  Constraint c;
+  c.choices = std::move(choices);
+  return c;
+}
+Constraint increasing(Constraint each) {
+  each.strictly_increasing = true;
+  return each;
+}
+Constraint name_like() {
+  Constraint c;
+  c.name = true;
+  return c;
+}
+
+namespace {
+
+// Bounds print as plain numbers: 0, 0.5, 1e+06 -> 1e6.
+std::string bound(double x) {
+  std::string s = format_real(x);
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+  return s;
+}
+
+std::string join(const std::vector<std::string>& items, std::string_view sep) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i) out += sep;
+    out += items[i];
+  }
+  return out;
+}
+
+// The numeric / choice part, without the array decorations.
+std::string scalar_text(const Constraint& c) {
+  if (c.min && c.max) {
+    return "in " + std::string(c.min_exclusive ? "(" : "[") + bound(*c.min) + ", " + bound(*c.max) +
+           (c.max_exclusive ? ")" : "]");
+  }
+  if (c.min) return (c.min_exclusive ? "> " : ">= ") + bound(*c.min);
+  if (c.max) return (c.max_exclusive ? "< " : "<= ") + bound(*c.max);
+  if (!c.choices.empty()) return "one of " + join(c.choices, ", ");
+  if (c.name) return "non-empty, without '/', '\\' or control characters";
+  return "";
+}
+
+bool number_ok(const Constraint& c, double x) {
+  if (c.min && (c.min_exclusive ? !(x > *c.min) : !(x >= *c.min))) return false;
+  if (c.max && (c.max_exclusive ? !(x < *c.max) : !(x <= *c.max))) return false;
+  return true;
+}
+
+bool is_array(ValueType t) {
+  return t == ValueType::real_array || t == ValueType::integer_array;
+}
+
+std::string with_description(std::string text, const KeySpec& spec) {
+  return spec.description.empty() ? text : text + " (" + spec.description + ")";
+}
+
+template <typename T>
+std::string number_text(T x) {
+  if constexpr (std::is_same_v<T, double>) {
+    return format_real(x);
+  } else {
+    return std::to_string(x);
+  }
+}
+
+template <typename T>
+std::optional<std::string> array_violation(const KeySpec& spec, const std::vector<T>& xs) {
+  const Constraint& c = spec.constraint;
+  const std::string each = scalar_text(c);
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const double x = static_cast<double>(xs[i]);
+    if (!std::isfinite(x)) {
+      return with_description("every element must be finite, but element " + std::to_string(i + 1) +
+                                  " is " + number_text(xs[i]),
+                              spec);
+    }
+    if (!number_ok(c, x)) {
+      return with_description("every element must be " + each + ", but element " +
+                                  std::to_string(i + 1) + " is " + number_text(xs[i]),
+                              spec);
+    }
+    if (c.strictly_increasing && i > 0 && !(xs[i] > xs[i - 1])) {
+      return with_description("must be strictly increasing, but element " + std::to_string(i + 1) +
+                                  " (" + number_text(xs[i]) + ") does not exceed element " +
+                                  std::to_string(i) + " (" + number_text(xs[i - 1]) + ")",
+                              spec);
+    }
+  }
+  return std::nullopt;
+}
+
+// Case-insensitive Levenshtein distance.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::optional<std::string> closest_match(std::string_view wrong,
+                                         const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  std::size_t best_distance = 0;
+  for (const std::string& c : candidates) {
+    const std::string_view leaf = std::string_view(c).substr(c.rfind('.') + 1);
+    const std::size_t allowed = leaf.size() <= 2 ? 0 : leaf.size() <= 5 ? 1 : 2;
+    const std::size_t d = edit_distance(wrong, c);
+    if (d <= allowed && (!best || d < best_distance)) {
+      best = c;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+std::string Constraint::text() const {
+  std::string s = scalar_text(*this);
+  if (!strictly_increasing) return s;
+  return s.empty() ? "strictly increasing" : "each " + s + ", strictly increasing";
+}
+
+std::string type_phrase(ValueType type) {
+  switch (type) {
+    case ValueType::real:
+      return "a real";
+    case ValueType::integer:
+      return "an integer";
+    case ValueType::boolean:
+      return "a boolean";
+    case ValueType::string:
+      return "a string";
+    case ValueType::real_array:
+      return "an array of reals";
+    case ValueType::integer_array:
+      return "an array of integers";
+  }
+  return "a value";
+}
+
+std::string expected_phrase(const KeySpec& spec) {
+  if (spec.type == ValueType::boolean) return "a boolean (true or false)";
+  const std::string c = spec.constraint.text();
+  if (c.empty()) return type_phrase(spec.type);
+  const bool comma = is_array(spec.type) || spec.type == ValueType::string;
+  return type_phrase(spec.type) + (comma ? ", " : " ") + c;
+}
+
+std::optional<std::string> constraint_violation(const KeySpec& spec, const Value& value) {
+  const Constraint& c = spec.constraint;
+  if (value.index() != static_cast<std::size_t>(spec.type)) {
+    return "must be " + expected_phrase(spec);
+  }
+  switch (spec.type) {
+    case ValueType::real: {
+      const double x = std::get<double>(value);
+      if (!std::isfinite(x)) {
+        return with_description("must be a finite real" + (c.text().empty() ? "" : " " + c.text()),
+                                spec);
+      }
+      if (!number_ok(c, x)) return with_description("must be " + c.text(), spec);
+      return std::nullopt;
+    }
+    case ValueType::integer:
+      if (!number_ok(c, static_cast<double>(std::get<long long>(value)))) {
+        return with_description("must be " + c.text(), spec);
+      }
+      return std::nullopt;
+    case ValueType::boolean:
+      return std::nullopt;
+    case ValueType::string: {
+      const std::string& s = std::get<std::string>(value);
+      if (!c.choices.empty() &&
+          std::find(c.choices.begin(), c.choices.end(), s) == c.choices.end()) {
+        std::string why = with_description("must be " + c.text(), spec);
+        if (const auto guess = closest_match(s, c.choices))
+          why += "; did you mean \"" + *guess + "\"?";
+        return why;
+      }
+      if (c.name) {
+        const bool bad_char = std::any_of(s.begin(), s.end(), [](char ch) {
+          const auto u = static_cast<unsigned char>(ch);
+          return ch == '/' || ch == '\\' || u < 0x20 || u == 0x7f;
+        });
+        if (s.empty() || s == "." || s == ".." || bad_char) {
+          return with_description("must be " + c.text(), spec);
+        }
+      }
+      return std::nullopt;
+    }
+    case ValueType::real_array:
+      return array_violation(spec, std::get<std::vector<double>>(value));
+    case ValueType::integer_array:
+      return array_violation(spec, std::get<std::vector<long long>>(value));
+  }
+  return std::nullopt;
+}
+
+std::string format_real(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  // Shortest round-trip digits; fixed notation for 1e-4 <= |x| < 1e6 (like %g), else scientific.
+  char buf[64];
+  auto res = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::scientific);
+  std::string s(buf, res.ptr);
+  const auto e = s.find('e');
+  const int exponent10 = std::stoi(s.substr(e + 1));
+  if (x == 0 || (exponent10 >= -4 && exponent10 < 6)) {
+    res = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::fixed);
+    s.assign(buf, res.ptr);
+    if (s.find('.') == std::string::npos) s += ".0";  // a TOML float, not an integer
+    return s;
+  }
+  // 1.5e+06 -> 1.5e6, 1e-05 -> 1e-5 (both are valid TOML; the short form reads better).
+  return s.substr(0, e) + "e" + std::to_string(exponent10);
+}
+
+std::string toml_quoted(std::string_view s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto u = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\f':
+        out += "\\f";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (u < 0x20 || u == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04X", static_cast<unsigned>(u));
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string format_value(const Value& value) {
+  struct Visitor {
+    std::string operator()(double x) const { return format_real(x); }
+    std::string operator()(long long x) const { return std::to_string(x); }
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(const std::string& s) const { return toml_quoted(s); }
+    std::string operator()(const std::vector<double>& xs) const {
+      std::vector<std::string> items;
+      for (const double x : xs) items.push_back(format_real(x));
+      return "[" + join(items, ", ") + "]";
+    }
+    std::string operator()(const std::vector<long long>& xs) const {
+      std::vector<std::string> items;
+      for (const long long x : xs) items.push_back(std::to_string(x));
+      return "[" + join(items, ", ") + "]";
+    }
+  };
+  return std::visit(Visitor{}, value);
+}
+
+}  // namespace granvv::app

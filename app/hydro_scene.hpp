@@ -1,0 +1,59 @@
+#pragma once
+// A case's hydro part: the engine's parameters read from the resolved case, the run, and
+// the checks against the exact solutions that the case's physics admits.
+#include <optional>
+#include <vector>
+
+#include "app/case_config.hpp"
+#include "hydro/convergence_study.hpp"
+#include "hydro/driver.hpp"
+#include "hydro/initial_conditions.hpp"
+#include "hydro/linear_mode_measurement.hpp"
+#include "hydro/singularity_analysis.hpp"
+
+namespace granvv::app {
+
+struct HydroScene {
+  hydro::Physics physics;
+  hydro::InitialParameters initial;
+  int cells = 0;
+  double node_offset = 0.5;
+  bool transverse = false;
+  hydro::RunControl control;
+  double progress_seconds = 2.0;
+  double tau_fit_min_density = 10, tau_fit_max_density = 1e4;
+  double profile_fit_x_min = 1e-3, profile_fit_x_max = 2e-2;
+  double collapse_tolerance = 0.015;
+  std::vector<int> convergence_cells;
+  double convergence_t = 1.0;
+};
+
+// Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
+// engine cannot run (meshes that do not nest, fields that are negative somewhere...).
+HydroScene hydro_scene_from(const CaseConfig& config);
+
+struct SnapshotCheck {
+  double t = 0.0;
+  std::string label;
+  hydro::Diagnostics diagnostics;
+  std::optional<double> collapse_error;  // paper Fig. 3: max |v - v0(xi)| / |a|
+  std::vector<double> xi, inertia_v0;    // xi = x - t v at nodes, and v0(xi)
+};
+
+struct HydroOutcome {
+  hydro::RunResult run;
+  hydro::InitialFields fields;
+  std::vector<SnapshotCheck> snapshots;
+  std::optional<hydro::SingularityFit> singularity;
+  std::optional<hydro::ProfileSlope> profile_slope;
+  double profile_slope_time = 0.0;
+  std::optional<double> inertia_tau;  // flow-by-inertia singularity time of the initial v
+  double haff_max_relative_error = 0.0;  // of the mass-weighted mean T against Haff's law
+  std::optional<hydro::MeasuredRate> linear_rate;
+  std::optional<hydro::ConvergenceStudy> convergence;
+  int unstable_modes = 0, shear_unstable_modes = 0;
+};
+
+HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress);
+
+}  // namespace granvv::app

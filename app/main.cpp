@@ -1,0 +1,61 @@
+// granvv: granular hydrodynamics side by side with particle simulations (DESIGN.md §3).
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "app/case_catalog.hpp"
+#include "app/report_command.hpp"
+#include "app/run_command.hpp"
+
+int main(int argc, char** argv) {
+  using namespace granvv::app;
+  CLI::App app{"granvv: granular hydrodynamics verified against exact solutions and MD"};
+  app.set_version_flag("--version", GRANVV_VERSION);
+  app.require_subcommand(1);
+
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "run a scene (no CASE: the embedded quickstart)");
+  run_cmd->add_option("case", run.case_name, "case file or scene name from `granvv list`");
+  run_cmd->add_option("--out", run.out_dir, "output folder (default out/<case name>)");
+  run_cmd->add_option("--set", run.sets, "override a case key: --set physics.K=1e-3 (TOML value)")
+      ->allow_extra_args(false);
+  run_cmd->add_flag("--dry-run", run.dry_run, "print the resolved configuration and stop");
+  run_cmd->add_flag("--quiet", run.quiet, "no progress lines on stderr");
+  bool no_report = false;
+  run_cmd->add_flag("--no-report", no_report, "skip report.html (results.h5, summary.json only)");
+
+  auto* list_cmd = app.add_subcommand("list", "list the scenes in cases/");
+
+  std::string report_dir;
+  auto* report_cmd = app.add_subcommand("report", "rebuild DIR/report.html from DIR/results.h5");
+  report_cmd->add_option("dir", report_dir, "output folder of a run")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  if (*run_cmd) {
+    run.report = !no_report;
+    return run_command(run);
+  }
+  if (*list_cmd) {
+    for (const auto& s : list_scenes()) {
+      std::cout << s.name << "  " << s.description;
+      if (!s.reference.empty()) std::cout << "  [" << s.reference << "]";
+      std::cout << "\n";
+    }
+    return 0;
+  }
+  if (*report_cmd) {
+    if (!std::filesystem::is_regular_file(std::filesystem::path(report_dir) / "results.h5")) {
+      std::cerr << "granvv: error: " << report_dir
+                << "/results.h5 not found; `granvv report DIR` needs the folder of a run\n";
+      return 2;
+    }
+    return build_report(report_dir);
+  }
+  return 2;
+}

@@ -1,0 +1,27 @@
+#include "app/report_command.hpp"
+
+#include <cstdlib>
+#include <string>
+
+namespace granvv::app {
+
+namespace {
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+}  // namespace
+
+int build_report(const std::filesystem::path& dir) {
+  const char* env = std::getenv("GRANVV_PYTHON");
+  const std::string python = env ? env : "/usr/bin/python3";
+  const std::string script = std::string(GRANVV_SOURCE_DIR) + "/scripts/report.py";
+  const std::string command =
+      shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(dir.string());
+  const int status = std::system(command.c_str());
+  if (status == -1) return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+}  // namespace granvv::app

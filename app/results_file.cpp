@@ -1,0 +1,162 @@
+#include "app/results_file.hpp"
+
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <limits>
+
+#include "hydro/haff.hpp"
+#include "hydro/linear_stability.hpp"
+
+namespace granvv::app {
+namespace {
+
+void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
+  const hsize_t dims[1] = {v.size()};
+  H5::DataSpace space(1, dims);
+  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space);
+  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+// rows x cols, row-major
+void write_matrix(H5::Group& g, const std::string& name, const std::vector<double>& v,
+                  hsize_t rows) {
+  const hsize_t dims[2] = {rows, rows ? v.size() / rows : 0};
+  H5::DataSpace space(2, dims);
+  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space);
+  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void write_strings(H5::Group& g, const std::string& name, const std::vector<std::string>& v) {
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  const hsize_t dims[1] = {v.size()};
+  H5::DataSpace space(1, dims);
+  std::vector<const char*> ptrs;
+  for (const auto& s : v) ptrs.push_back(s.c_str());
+  g.createDataSet(name, type, space).write(ptrs.data(), type);
+}
+
+template <class Object>
+void attribute(Object& o, const std::string& name, const std::string& value) {
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  const char* p = value.c_str();
+  o.createAttribute(name, type, H5::DataSpace(H5S_SCALAR)).write(type, &p);
+}
+
+template <class Object>
+void attribute(Object& o, const std::string& name, double value) {
+  o.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR))
+      .write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+void write_time_series(H5::Group g, const hydro::TimeSeries& ts, double t0) {
+  write_vector(g, "t", ts.t);
+  write_vector(g, "dt", ts.dt);
+  write_vector(g, "n_max", ts.n_max);
+  write_vector(g, "x_peak", ts.x_peak);
+  write_vector(g, "dvdx_peak", ts.dvdx_peak);
+  write_vector(g, "T_min", ts.T_min);
+  write_vector(g, "T_mean", ts.T_mean);
+  write_vector(g, "energy", ts.energy);
+  write_vector(g, "energy_thermal", ts.energy_thermal);
+  write_vector(g, "energy_kinetic", ts.energy_kinetic);
+  write_vector(g, "energy_kinetic_y", ts.energy_kinetic_y);
+  write_vector(g, "energy_cooled", ts.energy_cooled);
+  write_vector(g, "momentum", ts.momentum);
+  std::vector<double> haff;
+  for (double t : ts.t) haff.push_back(hydro::haff_temperature(t, t0));
+  write_vector(g, "haff_T", haff);
+}
+
+// The FieldSeries (cell centres; v averaged from the two nodes) and the Lagrangian arrays.
+void write_snapshots(H5::Group fields, H5::Group lagrangian, const HydroOutcome& out) {
+  const auto& snaps = out.run.snapshots;
+  const hsize_t rows = snaps.size();
+  std::vector<double> t, x, n, vx, vy, T, node_x, node_v, xi, v0;
+  std::vector<std::string> labels;
+  const bool transverse = snaps.front().state.has_transverse();
+  for (size_t k = 0; k < snaps.size(); ++k) {
+    const auto& s = snaps[k].state;
+    const int cells = s.cells();
+    t.push_back(s.t);
+    labels.push_back(snaps[k].label);
+    for (int i = 0; i < cells; ++i) {
+      const int r = (i + 1) % cells;
+      x.push_back(hydro::cell_centre(s, i));
+      n.push_back(s.cell_mass[i] / hydro::cell_width(s, i));
+      T.push_back(s.cell_T[i]);
+      vx.push_back(0.5 * (s.node_v[i] + s.node_v[r]));
+      if (transverse) vy.push_back(0.5 * (s.node_vy[i] + s.node_vy[r]));
+      node_x.push_back(s.node_x[i]);
+      node_v.push_back(s.node_v[i]);
+    }
+    xi.insert(xi.end(), out.snapshots[k].xi.begin(), out.snapshots[k].xi.end());
+    v0.insert(v0.end(), out.snapshots[k].inertia_v0.begin(), out.snapshots[k].inertia_v0.end());
+  }
+  write_vector(fields, "t", t);
+  write_strings(fields, "label", labels);
+  write_matrix(fields, "x", x, rows);
+  write_matrix(fields, "n", n, rows);
+  write_matrix(fields, "v_x", vx, rows);
+  if (transverse) write_matrix(fields, "v_y", vy, rows);
+  write_matrix(fields, "T", T, rows);
+  write_matrix(lagrangian, "node_x", node_x, rows);
+  write_matrix(lagrangian, "node_v_x", node_v, rows);
+  write_matrix(lagrangian, "xi", xi, rows);
+  write_matrix(lagrangian, "inertia_v0", v0, rows);
+  write_vector(lagrangian, "cell_mass", snaps.front().state.cell_mass);
+}
+
+void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out) {
+  const auto& p = scene.physics;
+  const int kmax = std::max(2 * out.shear_unstable_modes, 20);
+  std::vector<double> k, clustering, shear;
+  for (int m = 1; m <= kmax; ++m) {
+    k.push_back(m);
+    clustering.push_back(hydro::hcs_modes(p, m)[0].rate.real());
+    shear.push_back(hydro::shear_rate(p, m));
+  }
+  write_vector(g, "mode_k", k);
+  write_vector(g, "clustering_rate", clustering);
+  write_vector(g, "shear_rate", shear);
+  attribute(g, "t0", hydro::haff_time_scale(p));
+  attribute(g, "unstable_modes", double(out.unstable_modes));
+  attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));
+  attribute(g, "inertia_tau", out.inertia_tau.value_or(std::numeric_limits<double>::quiet_NaN()));
+}
+
+void write_convergence(H5::Group g, const hydro::ConvergenceStudy& c) {
+  std::vector<double> cells(c.cells.begin(), c.cells.end());
+  write_vector(g, "cells", cells);
+  write_vector(g, "error_x", c.error_x);
+  write_vector(g, "error_v", c.error_v);
+  write_vector(g, "error_n", c.error_n);
+  write_vector(g, "error_T", c.error_T);
+  attribute(g, "t", c.t);
+  attribute(g, "order_x", c.order_x.back());
+  attribute(g, "order_v", c.order_v.back());
+  attribute(g, "order_n", c.order_n.back());
+  attribute(g, "order_T", c.order_T.back());
+}
+
+}  // namespace
+
+void write_results_file(const std::filesystem::path& file, const RunMetadata& meta,
+                        const HydroScene& scene, const HydroOutcome& out) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_TRUNC);
+  H5::Group root = h5.openGroup("/");
+  attribute(root, "granvv_version", meta.version);
+  attribute(root, "case", meta.case_name);
+  attribute(root, "config_toml", meta.config_toml);
+  for (const auto& [key, value] : meta.config) attribute(root, key, value);
+
+  H5::Group hydro_group = h5.createGroup("/hydro");
+  write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series,
+                    hydro::haff_time_scale(scene.physics));
+  write_snapshots(h5.createGroup("/hydro/fields"), h5.createGroup("/hydro/lagrangian"), out);
+  write_theory(h5.createGroup("/hydro/theory"), scene, out);
+  if (out.convergence) write_convergence(h5.createGroup("/hydro/convergence"), *out.convergence);
+}
+
+}  // namespace granvv::app

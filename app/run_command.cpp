@@ -1,0 +1,151 @@
+#include "app/run_command.hpp"
+
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include "app/case_catalog.hpp"
+#include "app/case_config.hpp"
+#include "app/hydro_scene.hpp"
+#include "app/report_command.hpp"
+#include "app/results_file.hpp"
+#include "app/summary.hpp"
+
+namespace granvv::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Write-then-rename, so a reader never sees half a file.
+void write_file_atomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".partial";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+std::shared_ptr<spdlog::logger> make_logger(const fs::path& log_file, bool quiet) {
+  auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  console->set_level(quiet ? spdlog::level::warn : spdlog::level::info);
+  console->set_pattern("%^%l%$: %v");
+  auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file.string(), true);
+  file->set_level(spdlog::level::debug);
+  file->set_pattern("[%Y-%m-%d %H:%M:%S.%e] %l: %v");
+  auto logger = std::make_shared<spdlog::logger>("granvv", spdlog::sinks_init_list{console, file});
+  logger->set_level(spdlog::level::debug);
+  logger->flush_on(spdlog::level::info);
+  return logger;
+}
+
+// Fraction done: by time towards t_end, or by decades of density towards the singularity.
+double progress_fraction(const hydro::Progress& p) {
+  const double by_time = p.t / p.t_end;
+  const double by_density =
+      p.n_max > 1.0 ? std::log(p.n_max) / std::log(p.stop_density) : 0.0;
+  return std::clamp(std::max(by_time, by_density), 1e-9, 1.0);
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  // 1. Everything that can be wrong with the input is found before anything is written.
+  std::optional<CaseConfig> loaded;
+  HydroScene scene;
+  try {
+    const CaseSource source = locate_case(options.case_name);
+    loaded = CaseConfig::from_string(source.text, source.origin, options.sets);
+    scene = hydro_scene_from(*loaded);
+  } catch (const ConfigError& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 2;
+  }
+  const CaseConfig& config = *loaded;
+  if (options.dry_run) {
+    std::cout << config.resolved_toml();
+    return 0;
+  }
+
+  const fs::path dir =
+      options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    std::cerr << "granvv: error: cannot create output folder " << dir << ": " << ec.message()
+              << "\n";
+    return 1;
+  }
+  auto log = make_logger(dir / "run.log", options.quiet);
+  log->info("granvv {} running case '{}' into {}", GRANVV_VERSION, config.name(), dir.string());
+  log->info("resolved configuration:\n{}", config.resolved_toml());
+  write_file_atomically(dir / "case.toml", config.resolved_toml());
+
+  nlohmann::json summary = {{"case", config.name()},
+                            {"status", "failed"},
+                            {"granvv_version", GRANVV_VERSION},
+                            {"output_dir", dir.string()},
+                            {"hydro", nullptr},
+                            {"md", nullptr},
+                            {"compare", nullptr}};
+  int exit_code = 0;
+  try {
+    auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);
+    auto progress = [&](const hydro::Progress& p) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - last).count() < scene.progress_seconds) return;
+      last = now;
+      const double f = progress_fraction(p);
+      log->info("step {:>7} t={:<10.6g} dt={:<10.3e} ({}) n_max={:<10.4g} E={:<10.5g} ETA {:.1f} s",
+                p.step, p.t, p.dt, p.limited_by, p.n_max, p.energy, p.wall_seconds * (1 - f) / f);
+    };
+    const HydroOutcome outcome = run_hydro_scene(scene, progress);
+    const auto& run = outcome.run;
+    log->info("hydro stopped: {} (status {}) at t = {:.6g} after {} steps ({} rejected)",
+              run.stop_reason, hydro::to_string(run.status), run.snapshots.back().state.t,
+              run.steps, run.rejected_steps);
+    log->info("hydro throughput: {:.3g} s wall, {:.3g} cell-steps/s", run.wall_seconds,
+              run.steps * double(scene.cells) / std::max(run.wall_seconds, 1e-12));
+    if (outcome.singularity && run.status == hydro::RunStatus::singularity) {
+      log->info("singularity time tau = {:.6g} from 1/n_max over n in [{:.3g}, {:.3g}]",
+                outcome.singularity->tau, outcome.singularity->n_min, outcome.singularity->n_max);
+    }
+    RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
+    write_results_file(dir / "results.h5", meta, scene, outcome);
+    summary["hydro"] = hydro_summary(scene, outcome);
+    summary["status"] = hydro::to_string(run.status);
+    if (run.status == hydro::RunStatus::failed) {
+      log->error("hydro run failed: {}", run.stop_reason);
+      exit_code = 1;
+    }
+  } catch (const std::exception& e) {
+    log->error("run failed: {}", e.what());
+    summary["status"] = "failed";
+    summary["error"] = e.what();
+    exit_code = 1;
+  }
+  write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+  log->info("wrote {}", (dir / "summary.json").string());
+
+  if (options.report && fs::exists(dir / "results.h5")) {
+    const int status = build_report(dir);
+    if (status != 0) {
+      log->error("report script failed (exit {}); results.h5 and summary.json are complete",
+                 status);
+      exit_code = exit_code ? exit_code : 1;
+    } else {
+      log->info("report: {}", (dir / "report.html").string());
+    }
+  }
+  return exit_code;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,20 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace granvv::app {
+
+struct RunOptions {
+  std::string case_name;  // path or scene name; empty: the embedded default
+  std::string out_dir;    // default out/<case name>
+  std::vector<std::string> sets;
+  bool dry_run = false;
+  bool quiet = false;
+  bool report = true;
+};
+
+// `granvv run`: exit 0 for a finished run (status ok or singularity), 1 if the run failed,
+// 2 for bad input (nothing is written then).
+int run_command(const RunOptions& options);
+
+}  // namespace granvv::app

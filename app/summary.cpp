@@ -1,0 +1,127 @@
+#include "app/summary.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace granvv::app {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(std::optional<double> v) {
+  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
+}
+
+// "10", "100", "1000", "1e6": the crossing densities as the contract spells them.
+std::string density_key(double level) {
+  std::ostringstream s;
+  if (level >= 1e4) {
+    s << "1e" << std::lround(std::log10(level));
+  } else {
+    s << std::lround(level);
+  }
+  return s.str();
+}
+
+json convergence_json(const hydro::ConvergenceStudy& c) {
+  return {{"t", c.t},
+          {"cells", c.cells},
+          {"error_x", c.error_x},
+          {"error_v", c.error_v},
+          {"error_n", c.error_n},
+          {"error_T", c.error_T},
+          {"order_x", c.order_x.back()},
+          {"order_v", c.order_v.back()},
+          {"order_n", c.order_n.back()},
+          {"order_T", c.order_T.back()},
+          {"wall_seconds", c.wall_seconds}};
+}
+
+}  // namespace
+
+json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
+  const auto& run = out.run;
+  json h;
+  h["status"] = hydro::to_string(run.status);
+  h["stop_reason"] = run.stop_reason;
+  h["wall_seconds"] = run.wall_seconds;
+  h["cells"] = scene.cells;
+  h["steps"] = run.steps;
+  h["rejected_steps"] = run.rejected_steps;
+  const double cell_steps = double(run.steps) * scene.cells;
+  h["cell_steps"] = cell_steps;
+  h["cell_steps_per_second"] = run.wall_seconds > 0 ? json(cell_steps / run.wall_seconds) : json();
+  h["t_final"] = run.snapshots.back().state.t;
+  h["unstable_modes"] = out.unstable_modes;
+  h["shear_unstable_modes"] = out.shear_unstable_modes;
+
+  std::optional<double> tau;
+  if (run.status == hydro::RunStatus::singularity && out.singularity) tau = out.singularity->tau;
+  h["singularity_time"] = number_or_null(tau);
+  if (out.singularity) {
+    const auto& f = *out.singularity;
+    h["tau_fit_window"] = {{"n_min", f.n_min}, {"n_max", f.n_max}, {"t_min", f.t_min},
+                           {"t_max", f.t_max}, {"points", f.points}, {"tau", f.tau}};
+  } else {
+    h["tau_fit_window"] = nullptr;
+  }
+  h["inertia_singularity_time"] = number_or_null(out.inertia_tau);
+  h["singularity_time_deviation"] =
+      tau && out.inertia_tau ? json(*tau / *out.inertia_tau - 1.0) : json();
+
+  json crossings = json::object();
+  for (double level : scene.control.crossing_densities) {
+    const auto it = run.crossing_times.find(level);
+    crossings[density_key(level)] = it == run.crossing_times.end() ? json() : json(it->second);
+  }
+  h["peak_density_times"] = crossings;
+
+  json snaps = json::array();
+  for (const auto& s : out.snapshots) {
+    if (s.label != "output") continue;
+    const auto& d = s.diagnostics;
+    snaps.push_back({{"t", s.t},
+                     {"n_max", d.n_max},
+                     {"T_min", d.T_min},
+                     {"energy", d.energy()},
+                     {"energy_thermal", d.energy_thermal},
+                     {"energy_kinetic", d.energy_kinetic},
+                     {"energy_kinetic_y", d.energy_kinetic_y},
+                     {"collapse_error", number_or_null(s.collapse_error)}});
+  }
+  h["snapshots"] = snaps;
+  json missing = json::array();
+  for (double t : scene.control.output_times) {
+    bool found = false;
+    for (const auto& s : out.snapshots) found |= (s.label == "output" && s.t == t);
+    if (!found) missing.push_back(t);
+  }
+  h["output_times_not_reached"] = missing;
+
+  if (out.profile_slope) {
+    const auto& p = *out.profile_slope;
+    h["profile_slope"] = {{"t", out.profile_slope_time}, {"slope", p.slope}, {"x_min", p.x_min},
+                          {"x_max", p.x_max},           {"points", p.points}};
+  } else {
+    h["profile_slope"] = nullptr;
+  }
+  h["energy_drift"] = run.energy_drift;
+  h["momentum_drift"] = run.momentum_drift;
+  h["mass_drift"] = run.mass_drift;
+  h["haff_max_relative_error"] = out.haff_max_relative_error;
+  if (out.linear_rate) {
+    const auto& r = *out.linear_rate;
+    h["linear_mode"] = {{"k", scene.initial.mode},
+                        {"branch", scene.initial.linear_branch},
+                        {"rate_theory", {r.theory.real(), r.theory.imag()}},
+                        {"rate_measured", {r.measured.real(), r.measured.imag()}},
+                        {"relative_error", r.relative_error},
+                        {"samples", r.samples}};
+  } else {
+    h["linear_mode"] = nullptr;
+  }
+  h["convergence"] = out.convergence ? convergence_json(*out.convergence) : json();
+  return h;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,12 @@
+#pragma once
+// summary.json: the contract other tools read (DESIGN.md §3). Numbers are numbers; results
+// a scene does not have are null.
+#include <nlohmann/json.hpp>
+
+#include "app/hydro_scene.hpp"
+
+namespace granvv::app {
+
+nlohmann::json hydro_summary(const HydroScene& scene, const HydroOutcome& outcome);
+
+}  // namespace granvv::app

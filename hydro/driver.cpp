@@ -1,0 +1,159 @@
+#include "hydro/driver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "hydro/integrator.hpp"
+
+namespace granvv::hydro {
+
+void TimeSeries::record(double time, double step, const Diagnostics& d, double cooled) {
+  t.push_back(time);
+  dt.push_back(step);
+  n_max.push_back(d.n_max);
+  x_peak.push_back(d.x_peak);
+  dvdx_peak.push_back(d.dvdx_peak);
+  T_min.push_back(d.T_min);
+  T_mean.push_back(d.T_mean);
+  energy.push_back(d.energy());
+  energy_thermal.push_back(d.energy_thermal);
+  energy_kinetic.push_back(d.energy_kinetic);
+  energy_kinetic_y.push_back(d.energy_kinetic_y);
+  energy_cooled.push_back(cooled);
+  momentum.push_back(d.momentum);
+}
+
+std::string to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::completed:
+      return "ok";
+    case RunStatus::singularity:
+      return "singularity";
+    case RunStatus::failed:
+      return "failed";
+  }
+  return "failed";
+}
+
+namespace {
+
+// 1/n is linear in t near a flow-by-inertia singularity (paper Eq. 5b), so a crossing time
+// is interpolated linearly in 1/n between the two steps that bracket it.
+double crossing_time(double t0, double n0, double t1, double n1, double level) {
+  const double u0 = 1.0 / n0, u1 = 1.0 / n1, u = 1.0 / level;
+  return u0 == u1 ? t1 : t0 + (t1 - t0) * (u0 - u) / (u0 - u1);
+}
+
+}  // namespace
+
+RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl& control,
+                    const ProgressCallback& progress) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+
+  RunResult result;
+  HydroIntegrator integrator(physics, s.cells());
+  const Diagnostics d0 = diagnose(s);
+  double cooled = 0.0;
+  result.series.record(s.t, 0.0, d0, cooled);
+  result.snapshots.push_back({"initial", s});
+
+  std::vector<double> outputs;
+  for (double t : control.output_times) {
+    if (t > s.t) outputs.push_back(t);
+    if (t == s.t) result.snapshots.back().label = "output";
+  }
+  size_t next_output = 0;
+  Diagnostics d = d0;
+  double heating_limit = control.time_step.dt_max;
+  TimeStepLimit limit{0.0, ""};
+
+  auto drift = [&](const Diagnostics& now) {
+    result.energy_drift = std::max(result.energy_drift,
+                                   std::abs(now.energy() + cooled - d0.energy()) / d0.energy());
+    result.momentum_drift = std::max(result.momentum_drift, std::abs(now.momentum - d0.momentum));
+    result.mass_drift = std::max(result.mass_drift, std::abs(now.mass - d0.mass));
+  };
+
+  while (true) {
+    if (s.t >= control.t_end) {
+      result.status = RunStatus::completed;
+      result.stop_reason = "end time reached";
+      break;
+    }
+    limit = time_step_limit(s, control.time_step);
+    double dt = std::min(limit.dt, heating_limit);
+    bool clamped = false;
+    const double target = next_output < outputs.size() ? outputs[next_output] : control.t_end;
+    if (s.t + dt >= target * (1.0 - 1e-14)) {
+      dt = target - s.t;
+      clamped = true;
+    }
+
+    StepOutcome step;
+    for (int attempt = 0; attempt < 30; ++attempt) {
+      step = integrator.step(s, dt);
+      if (step.accepted) break;
+      ++result.rejected_steps;
+      dt *= 0.5;
+      clamped = false;
+    }
+    if (!step.accepted) {
+      result.status = RunStatus::failed;
+      result.stop_reason = "no admissible time step at t = " + std::to_string(s.t) +
+                           " (temperature would turn negative or cells would cross)";
+      break;
+    }
+    if (clamped) s.t = target;  // exact output and end times, free of round-off
+    const bool lands_on_output = clamped && next_output < outputs.size();
+    ++result.steps;
+    cooled += step.energy_cooled;
+    heating_limit = step.relative_heating > 0.0
+                        ? dt * control.time_step.max_temperature_change / step.relative_heating
+                        : control.time_step.dt_max;
+    heating_limit = std::max(heating_limit, 0.5 * dt);
+
+    const Diagnostics prev = d;
+    d = diagnose(s);
+    drift(d);
+    for (double level : control.crossing_densities) {
+      if (prev.n_max < level && d.n_max >= level && !result.crossing_times.count(level)) {
+        result.crossing_times[level] = crossing_time(s.t - dt, prev.n_max, s.t, d.n_max, level);
+      }
+    }
+    const bool singular = d.n_max >= control.stop_density || d.min_width <= control.min_cell_width;
+    if (result.steps % control.series_every == 0 || singular || lands_on_output) {
+      result.series.record(s.t, dt, d, cooled);
+    }
+    if (lands_on_output) {
+      result.snapshots.push_back({"output", s});
+      ++next_output;
+    }
+    if (progress) {
+      progress({result.steps, s.t, dt, control.t_end, d.n_max, control.stop_density, d.energy(),
+                wall(), limit.limited_by});
+    }
+    if (!std::isfinite(d.energy())) {
+      result.status = RunStatus::failed;
+      result.stop_reason = "non-finite energy at t = " + std::to_string(s.t);
+      break;
+    }
+    if (singular) {
+      result.status = RunStatus::singularity;
+      result.stop_reason = d.n_max >= control.stop_density
+                               ? "peak density reached hydro.stop_density"
+                               : "a cell width reached hydro.min_cell_width";
+      break;
+    }
+  }
+  if (result.series.t.back() != s.t) result.series.record(s.t, 0.0, d, cooled);
+  if (result.snapshots.back().state.t != s.t || result.snapshots.size() == 1) {
+    result.snapshots.push_back({"final", s});
+  }
+  result.wall_seconds = wall();
+  return result;
+}
+
+}  // namespace granvv::hydro

@@ -1,0 +1,66 @@
+#pragma once
+// The run loop of the continuum engine: time-step control, retries, snapshots at the
+// requested output times, time series of the whole-mesh diagnostics, peak-density
+// crossing times and the stop conditions (end time, singularity, failure).
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hydro/diagnostics.hpp"
+#include "hydro/lagrangian_state.hpp"
+#include "hydro/physics.hpp"
+#include "hydro/time_step.hpp"
+
+namespace granvv::hydro {
+
+struct RunControl {
+  double t_end = 1.0;
+  std::vector<double> output_times;  // snapshots are taken exactly at these times
+  TimeStepControl time_step;
+  double stop_density = 1e6;     // singularity: peak density reaches this
+  double min_cell_width = 1e-14;  // singularity: a cell gets this thin
+  std::vector<double> crossing_densities = {10.0, 100.0, 1000.0, 1e6};
+  int series_every = 1;
+};
+
+struct TimeSeries {
+  std::vector<double> t, dt, n_max, x_peak, dvdx_peak, T_min, T_mean, energy, energy_thermal,
+      energy_kinetic, energy_kinetic_y, energy_cooled, momentum;
+  void record(double time, double step, const Diagnostics& d, double cooled);
+};
+
+struct Snapshot {
+  std::string label;  // "initial", "output", "final"
+  LagrangianState state;
+};
+
+enum class RunStatus { completed, singularity, failed };
+std::string to_string(RunStatus s);
+
+struct RunResult {
+  RunStatus status = RunStatus::failed;
+  std::string stop_reason;
+  long long steps = 0;
+  long long rejected_steps = 0;
+  double wall_seconds = 0.0;
+  TimeSeries series;
+  std::vector<Snapshot> snapshots;
+  // time at which the peak density first reached each crossing density (absent: never)
+  std::map<double, double> crossing_times;
+  double energy_drift = 0.0;    // max |E + E_cooled - E(0)| / E(0)
+  double momentum_drift = 0.0;  // max |P - P(0)| (P(0) is zero in the paper's scenes)
+  double mass_drift = 0.0;
+};
+
+struct Progress {
+  long long step;
+  double t, dt, t_end, n_max, stop_density, energy, wall_seconds;
+  std::string limited_by;
+};
+using ProgressCallback = std::function<void(const Progress&)>;
+
+RunResult run_hydro(const Physics& physics, LagrangianState initial, const RunControl& control,
+                    const ProgressCallback& progress = {});
+
+}  // namespace granvv::hydro

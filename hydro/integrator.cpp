@@ -1,0 +1,53 @@
+#include "hydro/integrator.hpp"
+
+#include <algorithm>
+
+#include "hydro/haff.hpp"
+
+namespace granvv::hydro {
+
+double cool_cells(const Physics& physics, LagrangianState& s, double dt) {
+  const double c = cooling_rate_coefficient(physics);
+  double removed = 0.0;
+  for (int i = 0; i < s.cells(); ++i) {
+    const double n = s.cell_mass[i] / cell_width(s, i);
+    const double T = cool_exactly(s.cell_T[i], n, c, dt);
+    removed += s.cell_mass[i] * (s.cell_T[i] - T);
+    s.cell_T[i] = T;
+  }
+  return removed;
+}
+
+HydroIntegrator::HydroIntegrator(const Physics& physics, int cells)
+    : physics_(physics), op_(physics, cells) {}
+
+StepOutcome HydroIntegrator::step(LagrangianState& s, double dt) {
+  StepOutcome out;
+  start_ = s;
+  out.energy_cooled = cool_cells(physics_, start_, 0.5 * dt);
+
+  // Predictor: coefficients at the start of the step.
+  cell_widths(start_, widths_);
+  op_.freeze(start_.cell_mass, widths_, start_.cell_T, dt, {}, coefficients_);
+  if (!op_.advance(start_, coefficients_, dt, predicted_)) return out;
+
+  // Corrector: coefficients at the mean of start and predicted states, the pressure
+  // linearised about the predictor's compression.
+  cell_widths(predicted_, widths_mid_);
+  T_mid_.resize(widths_.size());
+  for (size_t i = 0; i < widths_.size(); ++i) {
+    widths_mid_[i] = 0.5 * (widths_[i] + widths_mid_[i]);
+    T_mid_[i] = 0.5 * (start_.cell_T[i] + predicted_.cell_T[i]);
+  }
+  op_.freeze(start_.cell_mass, widths_mid_, T_mid_, dt, op_.last_velocity_differences(),
+             coefficients_);
+  if (!op_.advance(start_, coefficients_, dt, corrected_)) return out;
+  out.relative_heating = op_.last_relative_temperature_change();
+
+  out.energy_cooled += cool_cells(physics_, corrected_, 0.5 * dt);
+  std::swap(s, corrected_);
+  out.accepted = true;
+  return out;
+}
+
+}  // namespace granvv::hydro

@@ -1,0 +1,37 @@
+#pragma once
+// Time integrator: Strang splitting of the exact cooling sink (paper Eq. 2, last term)
+// around a predictor-corrector pass of the Lagrangian operator, second order in time:
+//   C(dt/2) . H(dt) . C(dt/2),  H = corrector with coefficients at the mean of the
+//   start state and the predictor's end state.
+#include <vector>
+
+#include "hydro/lagrangian_operator.hpp"
+#include "hydro/lagrangian_state.hpp"
+#include "hydro/physics.hpp"
+
+namespace granvv::hydro {
+
+struct StepOutcome {
+  bool accepted = false;
+  double energy_cooled = 0.0;         // energy removed by inelastic cooling in this step
+  double relative_heating = 0.0;      // largest |dT/T| from work and conduction (not cooling)
+};
+
+// Cool every cell exactly at its fixed density for dt; returns the energy removed.
+double cool_cells(const Physics& physics, LagrangianState& s, double dt);
+
+class HydroIntegrator {
+ public:
+  HydroIntegrator(const Physics& physics, int cells);
+  // Advance s by dt. On rejection (T <= 0, tangled mesh) s is left unchanged.
+  StepOutcome step(LagrangianState& s, double dt);
+
+ private:
+  Physics physics_;
+  LagrangianOperator op_;
+  LagrangianState start_, predicted_, corrected_;
+  FrozenCoefficients coefficients_;
+  std::vector<double> widths_, widths_mid_, T_mid_;
+};
+
+}  // namespace granvv::hydro

@@ -1,0 +1,134 @@
+#include "hydro/lagrangian_operator.hpp"
+
+#include <cmath>
+
+#include "hydro/transport.hpp"
+
+namespace granvv::hydro {
+
+void cell_widths(const LagrangianState& s, std::vector<double>& widths) {
+  const int n = s.cells();
+  widths.resize(n);
+  for (int i = 0; i < n; ++i) widths[i] = cell_width(s, i);
+}
+
+LagrangianOperator::LagrangianOperator(const Physics& physics, int cells)
+    : physics_(physics),
+      n_(cells),
+      momentum_(cells),
+      energy_(cells),
+      diag_(cells),
+      upper_(cells),
+      rhs_(cells),
+      v_mid_(cells),
+      vy_mid_(cells),
+      dv_mid_(cells),
+      work_(cells),
+      shear_(cells) {}
+
+void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
+                                const std::vector<double>& widths, const std::vector<double>& T,
+                                double dt, const std::vector<double>& reference_dv,
+                                FrozenCoefficients& out) const {
+  out.pressure.resize(n_);
+  out.viscous_coupling.resize(n_);
+  out.heat_coupling.resize(n_);
+  out.acoustic_coupling.resize(n_);
+  out.reference_dv.assign(n_, 0.0);
+  if (!reference_dv.empty()) out.reference_dv = reference_dv;
+  for (int i = 0; i < n_; ++i) {
+    out.pressure[i] = pressure(cell_mass[i] / widths[i], T[i]);
+    out.viscous_coupling[i] = viscosity(physics_, T[i]) / widths[i];
+    out.acoustic_coupling[i] = out.pressure[i] * dt / widths[i];
+  }
+  // Heat flux at node j between cell centres j-1 and j: kappa at the mean of the two
+  // cells' T^{1/2}, over the centre-to-centre distance h_j.
+  for (int j = 0; j < n_; ++j) {
+    const int l = (j + n_ - 1) % n_;
+    const double kappa = 0.5 * (conductivity(physics_, T[l]) + conductivity(physics_, T[j]));
+    out.heat_coupling[j] = kappa / (0.5 * (widths[l] + widths[j]));
+  }
+}
+
+bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoefficients& c,
+                                 double dt, LagrangianState& to) {
+  const int n = n_;
+  const auto& a = c.viscous_coupling;
+  const auto& b = c.heat_coupling;
+  const auto& alpha = c.acoustic_coupling;
+  const auto& dv_ref = c.reference_dv;
+  to.t = from.t + dt;
+  to.cell_mass = from.cell_mass;
+  to.node_xi = from.node_xi;
+
+  // Momentum, paper Eq. 1b: mu_j dv_j/dt = P_j - P_{j-1} with, at the time-centred velocity
+  // vbar = (v^n + v^{n+1})/2 and dv_i = vbar_{i+1} - vbar_i,
+  //   P_i = -(p_i - alpha_i (dv_i - dv_ref_i)) + a_i dv_i.
+  for (int j = 0; j < n; ++j) {
+    const int l = (j + n - 1) % n;
+    const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
+    diag_[j] = 2.0 * mu / dt + a[j] + alpha[j] + a[l] + alpha[l];
+    upper_[j] = -(a[j] + alpha[j]);
+    const double explicit_stress_j = -c.pressure[j] - alpha[j] * dv_ref[j];
+    const double explicit_stress_l = -c.pressure[l] - alpha[l] * dv_ref[l];
+    rhs_[j] = 2.0 * mu / dt * from.node_v[j] + explicit_stress_j - explicit_stress_l;
+  }
+  if (!momentum_.factorize(diag_, upper_)) return false;
+  momentum_.solve(rhs_, v_mid_);
+  const bool transverse = from.has_transverse();
+  if (transverse) {
+    // Transverse momentum: shear stress a_i (vy_{i+1} - vy_i) (DESIGN.md §6).
+    for (int j = 0; j < n; ++j) {
+      const int l = (j + n - 1) % n;
+      const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
+      diag_[j] = 2.0 * mu / dt + a[j] + a[l];
+      upper_[j] = -a[j];
+      rhs_[j] = 2.0 * mu / dt * from.node_vy[j];
+    }
+    if (!shear_.factorize(diag_, upper_)) return false;
+    shear_.solve(rhs_, vy_mid_);
+  }
+  to.node_x.resize(n);
+  to.node_v.resize(n);
+  to.node_vy.resize(transverse ? n : 0);
+  for (int j = 0; j < n; ++j) {
+    to.node_x[j] = from.node_x[j] + dt * v_mid_[j];
+    to.node_v[j] = 2.0 * v_mid_[j] - from.node_v[j];
+    if (transverse) to.node_vy[j] = 2.0 * vy_mid_[j] - from.node_vy[j];
+  }
+
+  // Energy, paper Eq. 2: m_i dT_i/dt = P_i (vbar_{i+1} - vbar_i) + [viscous heating by v_y]
+  // + conduction, with the same P_i as the momentum step (exact energy exchange) and
+  // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}).
+  for (int i = 0; i < n; ++i) {
+    const int r = (i + 1) % n;
+    const double dv = v_mid_[r] - v_mid_[i];
+    dv_mid_[i] = dv;
+    work_[i] = (-c.pressure[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
+    if (transverse) {
+      const double dvy = vy_mid_[r] - vy_mid_[i];
+      work_[i] += a[i] * dvy * dvy;
+    }
+  }
+  const auto& T = from.cell_T;
+  for (int i = 0; i < n; ++i) {
+    const int l = (i + n - 1) % n, r = (i + 1) % n;
+    const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
+    diag_[i] = from.cell_mass[i] / dt + 0.5 * (b[r] + b[i]);
+    upper_[i] = -0.5 * b[r];
+    rhs_[i] = from.cell_mass[i] / dt * T[i] + work_[i] + 0.5 * conduction;
+  }
+  if (!energy_.factorize(diag_, upper_)) return false;
+  energy_.solve(rhs_, to.cell_T);
+  last_dT_ = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (!(to.cell_T[i] > 0.0) || !std::isfinite(to.cell_T[i])) return false;
+    last_dT_ = std::max(last_dT_, std::abs(to.cell_T[i] / T[i] - 1.0));
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!(cell_width(to, i) > 0.0)) return false;  // a node overtook its neighbour
+  }
+  return true;
+}
+
+}  // namespace granvv::hydro

@@ -1,0 +1,63 @@
+#pragma once
+// The spatial operator of the Lagrangian scheme for paper Eqs. (1)-(2) on a staggered
+// periodic mesh, in its "compatible" form: the work done on a cell's internal energy is
+// exactly the kinetic energy the nodes lose, so E = sum(m T + mu v^2/2) changes only by
+// the cooling sink (paper Eq. 3). Viscous stress and heat conduction enter implicitly
+// (Crank-Nicolson, periodic tridiagonal systems). The pressure is frozen except for its
+// adiabatic response to the cell's own compression over the step, which is implicit:
+//   p_eff = p - alpha (dv - dv_ref),  alpha = (p/dx) dt
+// (2D: T ~ n on an adiabat, p ~ dx^-2, so a half-step change dx -> dx + dt dv/2 changes p by
+// -(p/dx) dt dv). This removes the sound-crossing limit of the thin cells in a density peak,
+// where the flow is supersonic and the compression limit already sets the step.
+#include <vector>
+
+#include "hydro/lagrangian_state.hpp"
+#include "hydro/periodic_tridiagonal.hpp"
+#include "hydro/physics.hpp"
+
+namespace granvv::hydro {
+
+// Coefficients frozen over one pass, evaluated at one time level (or a mean of two).
+struct FrozenCoefficients {
+  std::vector<double> pressure;          // p_i = n_i T_i per cell
+  std::vector<double> viscous_coupling;  // a_i = eta(T_i) / dx_i per cell
+  std::vector<double> heat_coupling;     // b_j = kappa_j / h_j at node j (between cells j-1, j)
+  std::vector<double> acoustic_coupling;  // alpha_i = p_i dt / dx_i (implicit adiabatic response)
+  std::vector<double> reference_dv;       // dv_ref_i about which the pressure is linearised
+};
+
+class LagrangianOperator {
+ public:
+  LagrangianOperator(const Physics& physics, int cells);
+
+  // Coefficients from cell widths and temperatures (both per cell) for a step dt, with the
+  // pressure linearised about the velocity differences reference_dv (empty: zero).
+  void freeze(const std::vector<double>& cell_mass, const std::vector<double>& widths,
+              const std::vector<double>& T, double dt, const std::vector<double>& reference_dv,
+              FrozenCoefficients& out) const;
+  // Velocity differences vbar_{i+1} - vbar_i of the time-centred velocity of the last advance().
+  const std::vector<double>& last_velocity_differences() const { return dv_mid_; }
+
+  // One pass from `from` over dt with the frozen coefficients: solve the momentum
+  // equation (implicit viscosity) for the time-centred velocity, move the nodes, then the
+  // energy equation (compatible work, implicit conduction). `to` is overwritten.
+  // Returns false if the result is unphysical (T <= 0 or not finite).
+  bool advance(const LagrangianState& from, const FrozenCoefficients& c, double dt,
+               LagrangianState& to);
+
+  // Largest relative change of a cell temperature in the last advance().
+  double last_relative_temperature_change() const { return last_dT_; }
+
+ private:
+  Physics physics_;
+  int n_;
+  PeriodicTridiagonalSolver momentum_, energy_;
+  std::vector<double> diag_, upper_, rhs_, v_mid_, vy_mid_, dv_mid_, work_;
+  PeriodicTridiagonalSolver shear_;
+  double last_dT_ = 0.0;
+};
+
+// Widths of all cells of a state.
+void cell_widths(const LagrangianState& s, std::vector<double>& widths);
+
+}  // namespace granvv::hydro
