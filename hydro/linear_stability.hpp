@@ -18,7 +18,7 @@
 // det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e. mode k is
 // unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
 // stability boundary (no complex pair crosses the imaginary axis) follows from Routh-Hurwitz:
-// for K kx^2 > eps the Hurwitz condition a2 a1 > a0 holds for every kx iff q < 1/3. For
+// for K kx^2 > eps the Hurwitz condition a2 a1 > a0 holds for every kx iff q <= 1/3. For
 // q > 1/3 (restitution r < 1/3, far outside the model's q << 1) a band of wave numbers just
 // above the cutoff is oscillatory-unstable; the mode counts below use the paper's criterion.
 //

@@ -33,14 +33,16 @@ from pathlib import Path
 
 # Matplotlib wants a writable config/cache dir; the caller's HOME may be read-only.
 if not os.access(os.environ.get("MPLCONFIGDIR", os.path.expanduser("~")), os.W_OK):
+    import atexit
+    import shutil
     os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="granvv-mpl-")
+    atexit.register(shutil.rmtree, os.environ["MPLCONFIGDIR"], True)
 
 import numpy as np  # noqa: E402
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 import h5py  # noqa: E402
 import jinja2  # noqa: E402
 from markupsafe import Markup, escape  # noqa: E402
@@ -187,20 +189,21 @@ def fmt(x, digits=4):
     if v == 0:
         return Markup("0")
     if 1e-3 <= abs(v) < 1e5:
-        return Markup(f"{v:.{digits}g}")
+        return Markup(f"{v:.{digits}g}".replace("-", "−"))
     m, e = f"{v:.{max(digits - 2, 1)}e}".split("e")
     return Markup(f"{m} × 10<sup>{int(e)}</sup>".replace("-", "−"))
 
 
 def pct(x, digits=3):
     v = num(x)
-    return Markup("—") if v is None else Markup(f"{100 * v:.{digits}g} %")
+    return Markup("—") if v is None else Markup(f"{100 * v:.{digits}g} %".replace("-", "−"))
 
 
-def verdict(ok):
+def verdict(ok, yes="within paper bound", no="outside paper bound"):
+    """Badge for the page: (css class, text), or None when there is nothing to judge."""
     if ok is None:
         return None
-    return "pass" if ok else "fail"
+    return ("pass", yes) if ok else ("fail", no)
 
 
 def tex_num(v, digits=3):
@@ -480,7 +483,7 @@ def fig_energy(ctx):
     ax.set_xlabel(T_UNIT)
     ax.set_ylabel(r"energy  [$N T_0$]")
     ax.set_title("(a) energy split")
-    ax.legend(loc="lower left")
+    ax.legend(loc="best")
     if has_balance:
         ax2 = axes[0, 1]
         E0 = E[0]
@@ -534,6 +537,11 @@ def fig_collapse(ctx):
     amp = float(np.nanmax(np.abs(V0)))
     if not amp > 0:
         raise Skip("initial velocity profile is zero: no flow by inertia to test")
+    tau_in = num(ctx.res["theory"]["attrs"].get("inertia_tau")) if ctx.res["theory"] else None
+    collapse = [num(get(r, "collapse_error")) for r in get(ctx.s, "hydro", "snapshots") or []]
+    if tau_in is None and all(c is None for c in collapse):
+        raise Skip("the program makes no flow-by-inertia prediction for this initial condition "
+                   "(inertia_tau absent/NaN, no collapse_error in summary.json)")
     labels = snapshot_labels(F, t.size)
     later = [i for i in range(t.size) if t[i] > 0]
     if not later:
@@ -908,6 +916,24 @@ def fig_linear_theory(ctx):
                 ax.axvspan(0.1, num(count) + 0.5, color=c, alpha=0.06, lw=0)
             ax.plot([num(count)], [0], marker="v", color=c, ms=8, ls="none",
                     label=f"last unstable {lab} mode (code): $k = {int(num(count))}$")
+    # a linear-mode run: measured growth of one seeded mode against the theory curve
+    lm = get(ctx.s, "hydro", "linear_mode")
+    lm_note = None
+    if isinstance(lm, dict):
+        km, th_r, me_r = num(lm.get("k")), lm.get("rate_theory"), lm.get("rate_measured")
+        th_re = num(th_r[0] if isinstance(th_r, list) and th_r else th_r)
+        me_re = num(me_r[0] if isinstance(me_r, list) and me_r else me_r)
+        on_curve = None
+        if km is not None and cr is not None and th_re is not None:
+            j = np.flatnonzero(k == km)
+            if j.size and abs(cr[j[0]] - th_re) <= 1e-3 * max(1.0, abs(th_re)):
+                on_curve = True
+        if on_curve and me_re is not None:
+            ax.plot([km], [me_re], marker="*", color="k", ms=13, ls="none", zorder=6,
+                    label=rf"measured, seeded mode $k = {int(km)}$")
+        elif km is not None:
+            lm_note = ("The seeded-mode rate refers to a branch other than the plotted curve; "
+                       "see the table.")
     ax.set_xlim(max(0.8, k.min() * 0.8), k.max() * 1.25)
     ax.set_xlabel(r"mode number $k$  ($k_x = 2\pi k$)")
     ax.set_ylabel("largest real growth rate  [collision-clock units]")
@@ -919,11 +945,21 @@ def fig_linear_theory(ctx):
     if got is None:
         got = nu
     measured = [
-        ("unstable clustering modes (code)", fmt(got), verdict(int(got) == expected)
+        ("unstable clustering modes (code)", fmt(got), verdict(int(got) == expected, "matches", "differs")
          if got is not None and expected is not None else None),
         ("number of k ≥ 1 with πkK &lt; √q (paper's criterion, from K, q)", fmt(expected), None),
         ("unstable shear modes (code)", fmt(get(ctx.s, "hydro", "shear_unstable_modes") or nsu), None),
     ]
+    if isinstance(lm, dict):
+        def cplx(v):
+            if isinstance(v, list) and len(v) == 2 and all(num(c) is not None for c in v):
+                return Markup(f"{fmt(num(v[0]))} {'+' if num(v[1]) >= 0 else '−'} {fmt(abs(num(v[1])))} i")
+            return fmt(num(v))
+        measured += [
+            (f"seeded mode k = {fmt(lm.get('k'))}, branch {fmt(lm.get('branch'))}: rate, theory", cplx(lm.get("rate_theory")), None),
+            ("… rate, measured from the run", cplx(lm.get("rate_measured")), None),
+            ("… relative error", pct(num(lm.get("relative_error"))), None),
+        ]
     return {
         "id": "linear", "title": "Linear theory: clustering and shear modes", "img": name,
         "paper": ("Linearising around the homogeneous cooling state gives a clustering mode and a shear mode. "
@@ -931,6 +967,7 @@ def fig_linear_theory(ctx):
                   "q = 10<sup>−2</sup> this gives 79 unstable modes. Growth is algebraic in t, i.e. exponential "
                   "in the collision clock used on the vertical axis."),
         "measured": measured,
+        "note": Markup(escape(lm_note)) if lm_note else None,
     }
 
 
@@ -945,6 +982,8 @@ def fig_convergence(ctx):
     drawn = []
     style = {"x": ("C0", "o", "position $x$"), "v": ("C3", "s", "velocity $v$"),
              "T": ("C1", "^", "temperature $T$"), "n": ("C2", "D", "density $n$")}
+    words = {"x": "node position x", "v": "velocity v", "T": "temperature T", "n": "density n"}
+    size = {"x": 10, "v": 5.5, "T": 6, "n": 6}   # x and v errors often coincide: nest the markers
     for key, (c, mk, lab) in style.items():
         e = arr(C, "error_" + key)
         if e is None or e.size != cells.size - 1:
@@ -953,7 +992,7 @@ def fig_convergence(ctx):
         if order is None:
             order = num(C["attrs"].get("order_" + key))
         ok = e > 0
-        ax.plot(cells[:-1][ok], e[ok], color=c, marker=mk, ms=6, mfc="none", lw=1.2,
+        ax.plot(cells[:-1][ok], e[ok], color=c, marker=mk, ms=size[key], mfc="none", lw=1.2,
                 label=f"{lab}: order {order:.2f}" if order is not None else lab)
         drawn.append((key, e, order))
     if not drawn:
@@ -972,7 +1011,7 @@ def fig_convergence(ctx):
     ax.set_xticklabels([str(int(v)) for v in xr])
     ax.minorticks_off()
     name = save(fig, ctx.figdir, "fig7_convergence.png")
-    measured = [(f"observed order, {style[k][2]}", fmt(o, 3), None) for k, _, o in drawn]
+    measured = [(f"observed order, {words[k]}", fmt(o, 3), None) for k, _, o in drawn]
     measured.append(("cells", Markup(", ".join(str(int(c)) for c in cells)), None))
     return {
         "id": "convergence", "title": "Self-convergence of the Lagrangian scheme", "img": name,
@@ -1009,6 +1048,7 @@ def header_rows(res, s, cfg):
          if s.get("status") else fmt(None)),
         ("hydro status", fmt(h.get("status"))),
         ("stop reason", fmt(h.get("stop_reason"))),
+        ("final time", fmt(num(h.get("t_final")))) if num(h.get("t_final")) is not None else None,
         ("wall time (hydro)", Markup(f"{fmt(num(h.get('wall_seconds')), 3)} s") if num(h.get("wall_seconds")) is not None else fmt(None)),
         ("cells", fmt(h.get("cells"))),
         ("steps", fmt(h.get("steps"))),
@@ -1029,7 +1069,9 @@ def flatten(d, prefix=""):
         if isinstance(v, dict):
             out += flatten(v, key + ".")
         elif isinstance(v, list):
-            if all(not isinstance(x, (dict, list)) for x in v) and len(v) <= 12:
+            if not v:
+                out.append((key, Markup("none")))
+            elif all(not isinstance(x, (dict, list)) for x in v) and len(v) <= 12:
                 out.append((key, Markup(", ".join(str(fmt(x)) for x in v))))
             else:
                 out.append((key, Markup(f"[{len(v)} entries]")))
@@ -1051,11 +1093,14 @@ def snapshot_table(s):
     snaps = get(s, "hydro", "snapshots")
     if not isinstance(snaps, list) or not snaps:
         return None
-    cols = []
+    order = ["t", "n_max", "T_min", "energy", "energy_thermal", "energy_kinetic", "energy_kinetic_y",
+             "collapse_error"]
+    seen = []
     for rec in snaps:
         for k in (rec or {}):
-            if k not in cols:
-                cols.append(k)
+            if k not in seen:
+                seen.append(k)
+    cols = [k for k in order if k in seen] + [k for k in seen if k not in order]
     return {"cols": cols, "rows": [[fmt(num(get(r, c)) if num(get(r, c)) is not None else get(r, c)) for c in cols]
                                    for r in snaps]}
 

@@ -292,7 +292,9 @@ TEST(LinearStability, ModesAreNormalisedSortedEigenpairs) {
       bool has_unit_pivot = false;
       for (int i = 0; i < 3; ++i) has_unit_pivot = has_unit_pivot || v(i) == cd(1.0, 0.0);
       EXPECT_TRUE(has_unit_pivot);
-      if (m > 0) EXPECT_GE(modes[m - 1].rate.real(), modes[m].rate.real());
+      if (m > 0) {
+        EXPECT_GE(modes[m - 1].rate.real(), modes[m].rate.real());
+      }
     }
   }
 }

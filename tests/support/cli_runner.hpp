@@ -16,4 +16,17 @@ CliResult run_cli(const std::string& args);
 std::filesystem::path fresh_directory(const std::string& name);
 std::string read_text(const std::filesystem::path& file);
 
+struct CliStreams {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+// Like run_cli, but stdout and stderr are captured separately; with a non-empty working_dir the
+// binary runs there (`cd working_dir && granvv args`).
+CliStreams run_cli_streams(const std::string& args,
+                           const std::filesystem::path& working_dir = {});
+// A string as one single-quoted shell word.
+std::string shell_quote(const std::string& s);
+
 }  // namespace granvv::testing
