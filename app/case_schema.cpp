@@ -95,6 +95,8 @@ const std::vector<KeySpec>& case_schema() {
       {"convergence.cells", kIntegers, kEmpty, increasing(at_least(4)),
        "cell counts of the convergence study (empty = no study)"},
       {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
+      {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
+       "Courant number of the study; its step is also capped at cfl/cells, so dt ~ h"},
   };
   return rows;
 }

@@ -41,6 +41,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   s.collapse_tolerance = c.real("analysis.collapse_tolerance");
   for (long long n : c.integers("convergence.cells")) s.convergence_cells.push_back(int(n));
   s.convergence_t = c.real("convergence.t");
+  s.convergence_cfl = c.real("convergence.cfl");
 
   // Combinations the engine cannot run.
   if (s.convergence_cells.size() == 1 || s.convergence_cells.size() == 2) {
@@ -106,6 +107,13 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   out.singularity = hydro::fit_singularity_time(run.series.t, run.series.n_max,
                                                 scene.tau_fit_min_density,
                                                 scene.tau_fit_max_density);
+  const auto& t = run.series.t;
+  const auto& n = run.series.n_max;
+  const size_t last = t.size() - 1;
+  if (run.status == hydro::RunStatus::singularity && last >= 1 && n[last] > n[last - 1]) {
+    const double u0 = 1.0 / n[last - 1], u1 = 1.0 / n[last];
+    out.blowup_time = t[last] + u1 * (t[last] - t[last - 1]) / (u0 - u1);
+  }
   for (auto it = run.snapshots.rbegin(); it != run.snapshots.rend(); ++it) {
     if (it->label != "output") continue;
     out.profile_slope = hydro::fit_density_profile_slope(it->state, scene.profile_fit_x_min,
@@ -129,10 +137,11 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
                                                  scene.initial.linear_branch);
   }
   if (scene.convergence_cells.size() >= 3) {
+    auto time_step = scene.control.time_step;
+    time_step.cfl = scene.convergence_cfl;
     out.convergence =
         hydro::run_convergence_study(physics, out.fields, scene.convergence_cells,
-                                     scene.node_offset, scene.convergence_t,
-                                     scene.control.time_step);
+                                     scene.node_offset, scene.convergence_t, time_step);
   }
   return out;
 }

@@ -26,6 +26,7 @@ struct HydroScene {
   double collapse_tolerance = 0.015;
   std::vector<int> convergence_cells;
   double convergence_t = 1.0;
+  double convergence_cfl = 0.5;
 };
 
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
@@ -45,6 +46,9 @@ struct HydroOutcome {
   hydro::InitialFields fields;
   std::vector<SnapshotCheck> snapshots;
   std::optional<hydro::SingularityFit> singularity;
+  // Blow-up time extrapolated from the last two samples of 1/n_max(t): a tighter estimate of
+  // when n_max diverges than the window fit, since pressure in the peak bends 1/n_max(t).
+  std::optional<double> blowup_time;
   std::optional<hydro::ProfileSlope> profile_slope;
   double profile_slope_time = 0.0;
   std::optional<double> inertia_tau;  // flow-by-inertia singularity time of the initial v

@@ -25,6 +25,7 @@ std::string density_key(double level) {
 
 json convergence_json(const hydro::ConvergenceStudy& c) {
   return {{"t", c.t},
+          {"cfl", c.cfl},
           {"cells", c.cells},
           {"error_x", c.error_x},
           {"error_v", c.error_v},
@@ -65,6 +66,9 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   } else {
     h["tau_fit_window"] = nullptr;
   }
+  h["blowup_time"] = number_or_null(out.blowup_time);
+  h["blowup_time_deviation"] =
+      out.blowup_time && out.inertia_tau ? json(*out.blowup_time / *out.inertia_tau - 1.0) : json();
   h["inertia_singularity_time"] = number_or_null(out.inertia_tau);
   h["singularity_time_deviation"] =
       tau && out.inertia_tau ? json(*tau / *out.inertia_tau - 1.0) : json();

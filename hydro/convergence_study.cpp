@@ -62,6 +62,7 @@ ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFiel
   const auto start = std::chrono::steady_clock::now();
   ConvergenceStudy study;
   study.t = t;
+  study.cfl = base.cfl;
   study.cells = cells;
   std::vector<LagrangianState> finals;
   for (int n : cells) {

@@ -15,6 +15,7 @@ namespace granvv::hydro {
 
 struct ConvergenceStudy {
   double t = 0.0;
+  double cfl = 0.0;
   std::vector<int> cells;
   // L1 differences between successive levels (size levels - 1)
   std::vector<double> error_x, error_v, error_n, error_T;

@@ -358,25 +358,35 @@ def fig_profiles(ctx):
     ax_n = fig.add_subplot(gs[0, 0])
     ax_v = fig.add_subplot(gs[1, 0], sharex=ax_n)
     ax_T = fig.add_subplot(gs[2, 0], sharex=ax_n) if has_T else None
+    # density axis: log for clusters, linear for mild contrast, n - 1 for linear perturbations
+    n_mode = "delta" if dn < 1e-2 else ("log" if np.nanmax(n[idx]) / np.nanmin(n[idx]) > 3 else "lin")
+    n_f, n_suffix = power_scale(n[idx] - 1.0) if n_mode == "delta" else (1.0, "")
+    v_f, v_suffix = power_scale(*(a[idx] for a in (vx, vy if has_vy else None) if a is not None))
     for c, i in zip(cols, idx):
         xs, ni, *rest = sorted_periodic(x[i], n[i], *(a[i] for a in (vx, vy, T) if a is not None))
         lw = 1.8 if i == last else 1.1
-        ax_n.plot(xs, ni, color=c, lw=lw, label=tlabel(t[i], labels[i]))
+        ax_n.plot(xs, (ni - 1.0) * n_f if n_mode == "delta" else ni, color=c, lw=lw, label=tlabel(t[i], labels[i]))
         k = 0
         if vx is not None:
-            ax_v.plot(xs, rest[k], color=c, lw=lw)
+            ax_v.plot(xs, rest[k] * v_f, color=c, lw=lw)
             k += 1
         if vy is not None:
             if has_vy:
-                ax_v.plot(xs, rest[k], color=c, lw=0.9, ls="--")
+                ax_v.plot(xs, rest[k] * v_f, color=c, lw=0.9, ls="--")
             k += 1
         if ax_T is not None:
             ax_T.plot(xs, rest[k], color=c, lw=lw)
-    ax_n.set_yscale("log")
-    ax_n.set_ylabel(N_UNIT)
-    ax_n.set_title("(a) density")
-    ax_n.legend(loc="upper left", ncol=2 if len(idx) > 4 else 1)
-    ax_v.set_ylabel(V_UNIT)
+    if n_mode == "log":
+        ax_n.set_yscale("log")
+        ax_n.set_ylabel(N_UNIT)
+    elif n_mode == "delta":
+        ax_n.set_ylabel(r"$n - 1$  [$n_0$]" + n_suffix)
+        ax_n.axhline(0, color="0.5", lw=0.6)
+    else:
+        ax_n.set_ylabel(N_UNIT)
+    ax_n.set_title("(a) density" + (" perturbation" if n_mode == "delta" else ""))
+    ax_n.legend(loc="best", ncol=2 if len(idx) > 4 else 1)
+    ax_v.set_ylabel(r"$v$  [$\sqrt{T_0/m}$]" + v_suffix)
     ax_v.set_title("(b) velocity" + ("  (solid $v_x$, dashed $v_y$)" if has_vy else ""))
     ax_v.axhline(0, color="0.5", lw=0.6)
     if ax_T is not None:
@@ -680,7 +690,11 @@ def fig_singularity(ctx):
             A = np.sum(y[m] * (tau - t[m])) / np.sum((tau - t[m]) ** 2)
             ax2.plot(tl, A * (tau - tl), color=col, lw=1.0, ls="--", zorder=4)
         ax2.plot([], [], color="0.2", lw=1.0, ls="--", label=r"fit $\propto(\tau - t)$ in the window")
-    ax2.set_ylim(bottom=0)
+    # robust top: an isolated spike of 1/|dv/dx| (the peak cell hopping early on) must not flatten the rest
+    tops = [float(np.nanmax(inv_n))]
+    if inv_g is not None and np.isfinite(inv_g).any():
+        tops.append(float(np.nanpercentile(inv_g, 98)))
+    ax2.set_ylim(0, 1.12 * max(tops))
     ax2.set_xlabel(T_UNIT)
     ax2.set_ylabel(r"$1/n_{\max}$ [$1/n_0$],  $1/|\partial v/\partial x|$ [$L_x/\sqrt{T_0/m}$]")
     ax2.set_title("(b) inverses (paper's inset)")
@@ -899,11 +913,13 @@ def fig_linear_theory(ctx):
         curves.append((cr, "C3", "clustering (thermal) mode", "o"))
     if sr is not None and sr.size == k.size:
         curves.append((sr, "C0", "shear mode", "s"))
+    few = k.max() <= 40
     for y, c, lab, mk in curves:
-        ax.plot(k, y, color=c, lw=1.5, label=lab)
+        ax.plot(k, y, color=c, lw=1.2 if few else 1.5, label=lab, marker=mk if few else None, ms=4)
         pos_max = max(pos_max, float(np.nanmax(y)))
     ax.axhline(0, color="0.3", lw=0.8)
-    ax.set_xscale("log")
+    if not few:
+        ax.set_xscale("log")
     if pos_max > 0:
         ax.set_ylim(-1.6 * pos_max, 1.25 * pos_max)
     if K and q:
@@ -913,7 +929,7 @@ def fig_linear_theory(ctx):
     for count, c, lab in ((nu, "C3", "clustering"), (nsu, "C0", "shear")):
         if count is not None and num(count) is not None and num(count) >= 1:
             if lab == "clustering":
-                ax.axvspan(0.1, num(count) + 0.5, color=c, alpha=0.06, lw=0)
+                ax.axvspan(0.1 if not few else k.min() - 0.5, num(count) + 0.5, color=c, alpha=0.06, lw=0)
             ax.plot([num(count)], [0], marker="v", color=c, ms=8, ls="none",
                     label=f"last unstable {lab} mode (code): $k = {int(num(count))}$")
     # a linear-mode run: measured growth of one seeded mode against the theory curve
@@ -934,11 +950,11 @@ def fig_linear_theory(ctx):
         elif km is not None:
             lm_note = ("The seeded-mode rate refers to a branch other than the plotted curve; "
                        "see the table.")
-    ax.set_xlim(max(0.8, k.min() * 0.8), k.max() * 1.25)
+    ax.set_xlim((k.min() - 0.5, k.max() + 0.5) if few else (max(0.8, k.min() * 0.8), k.max() * 1.25))
     ax.set_xlabel(r"mode number $k$  ($k_x = 2\pi k$)")
     ax.set_ylabel("largest real growth rate  [collision-clock units]")
     ax.set_title("Linear stability of the homogeneous cooling state")
-    ax.legend(loc="lower left")
+    ax.legend(loc="best")
     name = save(fig, ctx.figdir, "fig6_linear_theory.png")
     expected = (math.ceil(math.sqrt(q) / (math.pi * K)) - 1) if K and q else None
     got = get(ctx.s, "hydro", "unstable_modes")

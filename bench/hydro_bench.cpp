@@ -1,0 +1,76 @@
+// Speed of the continuum engine, as figures: wall time and cell-steps/s of the paper's
+// single-mode scene (cases/single_mode.toml) run to n_max = 1e6, and of the scheme's
+// building blocks. Run: build/granvv_bench (add --benchmark_repetitions=5 for spread).
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "app/case_config.hpp"
+#include "app/hydro_scene.hpp"
+#include "hydro/integrator.hpp"
+#include "hydro/periodic_tridiagonal.hpp"
+
+namespace {
+
+using granvv::app::CaseConfig;
+
+granvv::app::HydroScene single_mode_scene(int cells) {
+  const auto config = CaseConfig::from_file(
+      std::string(GRANVV_SOURCE_DIR) + "/cases/single_mode.toml",
+      {"hydro.cells=" + std::to_string(cells), "convergence.cells=[]", "hydro.output_times=[]"});
+  return granvv::app::hydro_scene_from(config);
+}
+
+// The acceptance benchmark: single mode, 2000 cells, to the singularity (n_max = 1e6).
+void SingleModeToSingularity(benchmark::State& state) {
+  const auto scene = single_mode_scene(static_cast<int>(state.range(0)));
+  const auto fields = granvv::hydro::make_initial_fields(scene.initial, scene.physics);
+  long long steps = 0;
+  double tau = 0;
+  for (auto _ : state) {
+    auto initial = granvv::hydro::discretize(fields, scene.cells, scene.node_offset, false);
+    const auto run = granvv::hydro::run_hydro(scene.physics, std::move(initial), scene.control);
+    steps = run.steps;
+    tau = run.series.t.back();
+    benchmark::DoNotOptimize(run.series.n_max.back());
+  }
+  state.counters["steps"] = double(steps);
+  state.counters["t_stop"] = tau;
+  state.counters["cell_steps_per_s"] =
+      benchmark::Counter(double(steps) * scene.cells * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(SingleModeToSingularity)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
+
+// One predictor-corrector step with Strang-split cooling on the initial single-mode state.
+void IntegratorStep(benchmark::State& state) {
+  const auto scene = single_mode_scene(static_cast<int>(state.range(0)));
+  auto s = granvv::hydro::discretize(
+      granvv::hydro::make_initial_fields(scene.initial, scene.physics), scene.cells, 0.5, false);
+  granvv::hydro::HydroIntegrator integrator(scene.physics, scene.cells);
+  for (auto _ : state) {
+    auto copy = s;
+    benchmark::DoNotOptimize(integrator.step(copy, 1e-5).accepted);
+  }
+  state.counters["cell_steps_per_s"] =
+      benchmark::Counter(double(scene.cells) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(IntegratorStep)->Arg(2000)->Unit(benchmark::kMicrosecond);
+
+// One factorisation and solve of a periodic tridiagonal SPD system (Eigen sparse LDL^T).
+void PeriodicTridiagonal(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  granvv::hydro::PeriodicTridiagonalSolver solver(n);
+  std::vector<double> diag(n, 4.0), upper(n, -1.0), rhs(n, 1.0), x;
+  for (auto _ : state) {
+    solver.factorize(diag, upper);
+    solver.solve(rhs, x);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["unknowns_per_s"] =
+      benchmark::Counter(double(n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(PeriodicTridiagonal)->Arg(2000)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

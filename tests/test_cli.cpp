@@ -1,0 +1,651 @@
+// The command-line contract (DESIGN.md §3), driven through the real build/granvv binary:
+// bad input, --dry-run, `granvv list`, a small real run and its output folder, the report, and
+// the embedded default scene. Runs use tiny meshes so the whole file takes a few seconds.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/case_schema.hpp"
+#include "support/cli_runner.hpp"
+
+namespace granvv::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A run that takes a fraction of a second: 64 cells, no convergence study, one output time.
+const std::string kSmall =
+    "--set hydro.cells=64 --set 'convergence.cells=[]' --set hydro.t_end=0.5 "
+    "--set 'hydro.output_times=[0.25]'";
+
+std::string q(const fs::path& p) { return shell_quote(p.string()); }
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const auto end = text.find('\n', start);
+    lines.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return lines;
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
+
+void write_file(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << "cannot write " << file;
+}
+
+bool has_signature(const fs::path& file, const std::string& magic) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(magic.size(), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  return in.good() && head == magic;
+}
+
+const std::string kHdf5Magic("\x89HDF\r\n\x1a\n", 8);
+const std::string kPngMagic("\x89PNG\r\n\x1a\n", 8);
+
+std::string describe(const CliStreams& r) {
+  return "exit " + std::to_string(r.exit_code) + "\n--- stdout ---\n" + r.out +
+         "--- stderr ---\n" + r.err;
+}
+
+// Parses TOML text, failing the test (and returning an empty table) if it is not TOML.
+toml::table parse_toml(const std::string& text, const std::string& what) {
+  try {
+    return toml::parse(text, std::string_view(what));
+  } catch (const toml::parse_error& e) {
+    ADD_FAILURE() << what << " is not valid TOML: " << e << "\n" << text;
+    return {};
+  }
+}
+
+// Removes a test's temporary folder unless the test failed (then it is kept for inspection).
+struct ScratchFolder {
+  explicit ScratchFolder(const std::string& name) : path(fresh_directory(name)) {}
+  ~ScratchFolder() {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    if (test && !test->result()->Failed()) {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  }
+  fs::path path;
+};
+
+// ---------------------------------------------------------------------------------------------
+// 1. Bad input: exit code 2, one line "granvv: error: ..." on stderr, nothing written.
+// ---------------------------------------------------------------------------------------------
+
+// A case file with known line numbers: K on line 5, q on line 6, [hydro] keys from line 9.
+std::string case_text(const std::string& K, const std::string& q_value,
+                      const std::string& hydro_lines) {
+  return "[case]\n"
+         "name = \"cli_bad_input\"\n"
+         "\n"
+         "[physics]\n"
+         "K = " + K + "\n"
+         "q = " + q_value + "\n"
+         "\n"
+         "[hydro]\n" +
+         hydro_lines + "\n";
+}
+
+struct BadInput {
+  std::string name;
+  std::string case_file;  // written to {DIR}/case.toml if non-empty
+  std::string args;       // after `granvv run`; {CASE} = that file, {DIR} = the scratch folder
+  std::vector<std::string> message_parts;  // the error line must contain each ({CASE}, {DIR})
+};
+
+std::string substitute(std::string s, const fs::path& dir, const fs::path& case_file) {
+  const std::pair<std::string, std::string> vars[] = {{"{CASE}", case_file.string()},
+                                                      {"{DIR}", dir.string()}};
+  for (const auto& [var, value] : vars) {
+    for (auto at = s.find(var); at != std::string::npos; at = s.find(var, at + value.size())) {
+      s.replace(at, var.size(), value);
+    }
+  }
+  return s;
+}
+
+std::ostream& operator<<(std::ostream& os, const BadInput& b) { return os << b.name; }
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitsTwoWithOneErrorLineAndWritesNothing) {
+  const BadInput& bad = GetParam();
+  ScratchFolder scratch("bad-" + bad.name);
+  const fs::path case_file = scratch.path / "case.toml";
+  if (!bad.case_file.empty()) write_file(case_file, bad.case_file);
+  const fs::path out = scratch.path / "out";
+
+  const CliStreams r = run_cli_streams(
+      "run " + substitute(bad.args, scratch.path, case_file) + " --out " + q(out), scratch.path);
+
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  const auto lines = lines_of(r.err);
+  ASSERT_EQ(lines.size(), 1u) << "expected exactly one line on stderr\n" << describe(r);
+  const std::string& line = lines.front();
+  EXPECT_TRUE(starts_with(line, "granvv: error: ")) << line;
+  for (const std::string& part : bad.message_parts) {
+    const std::string expected = substitute(part, scratch.path, case_file);
+    EXPECT_TRUE(contains(line, expected)) << "missing '" << expected << "' in\n" << line;
+  }
+  EXPECT_EQ(r.out, "") << "nothing on stdout for a rejected run";
+  EXPECT_FALSE(fs::exists(out)) << "a rejected run created its output folder " << out;
+  EXPECT_FALSE(fs::exists(scratch.path / "out" / "cli_bad_input"));
+}
+
+const std::string kQ = "0.01";
+const std::string kK = "4e-4";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, CliBadInput,
+    ::testing::Values(
+        // Case files: the message names file:line, the key, the value and what is allowed.
+        BadInput{"unknown_key_in_file", case_text(kK, kQ, "cels = 64"), "{CASE}",
+                 {"{CASE}:9:", "'hydro.cels'", "did you mean 'hydro.cells'", "allowed"}},
+        BadInput{"unknown_table_in_file", case_text(kK, kQ, "cells = 64\n[hydrox]\ncells = 64"),
+                 "{CASE}",
+                 {"{CASE}:10:", "hydrox", "allowed"}},
+        BadInput{"wrong_type_string_for_integer", case_text(kK, kQ, "cells = \"many\""), "{CASE}",
+                 {"{CASE}:9:", "hydro.cells", "\"many\"", "an integer"}},
+        BadInput{"wrong_type_real_for_integer", case_text(kK, kQ, "cells = 64.5"), "{CASE}",
+                 {"{CASE}:9:", "hydro.cells", "64.5", "an integer"}},
+        BadInput{"wrong_type_string_for_real", case_text("\"big\"", kQ, "cells = 64"), "{CASE}",
+                 {"{CASE}:5:", "physics.K", "\"big\"", "a real"}},
+        BadInput{"K_zero", case_text("0", kQ, "cells = 64"), "{CASE}",
+                 {"{CASE}:5:", "physics.K = 0", "> 0"}},
+        BadInput{"K_negative", case_text("-1e-3", kQ, "cells = 64"), "{CASE}",
+                 {"{CASE}:5:", "physics.K = -0.001", "> 0"}},
+        BadInput{"q_zero", case_text(kK, "0.0", "cells = 64"), "{CASE}",
+                 {"{CASE}:6:", "physics.q = 0", "(0, 0.5]"}},
+        BadInput{"q_negative", case_text(kK, "-0.1", "cells = 64"), "{CASE}",
+                 {"{CASE}:6:", "physics.q = -0.1", "(0, 0.5]"}},
+        BadInput{"q_above_half", case_text(kK, "0.6", "cells = 64"), "{CASE}",
+                 {"{CASE}:6:", "physics.q = 0.6", "(0, 0.5]"}},
+        BadInput{"cells_below_4", case_text(kK, kQ, "cells = 3"), "{CASE}",
+                 {"{CASE}:9:", "hydro.cells = 3", ">= 4"}},
+        BadInput{"output_times_beyond_t_end_in_file",
+                 case_text(kK, kQ, "t_end = 1.0\noutput_times = [0.5, 2.0]"), "{CASE}",
+                 {"{CASE}:10:", "hydro.output_times", "2.0", "hydro.t_end = 1.0", "<="}},
+        BadInput{"toml_syntax_error", case_text(kK, kQ, "cells = = 3"), "{CASE}",
+                 {"{CASE}:9:", "syntax"}},
+        BadInput{"missing_case_file", "", "{DIR}/no_such_case.toml",
+                 {"{DIR}/no_such_case.toml", "not found"}},
+        BadInput{"unknown_scene_name", "", "no_such_scene", {"'no_such_scene'", "not found"}},
+        // --set: the message names the --set argument, the key, the value and what is allowed.
+        BadInput{"set_without_equals", "", "--set physics.K",
+                 {"--set", "physics.K", "KEY=VALUE"}},
+        BadInput{"set_without_dotted_key", "", "--set K=1e-3", {"--set", "K=1e-3", "KEY=VALUE"}},
+        BadInput{"set_unknown_key", "", "--set physics.Kx=1",
+                 {"--set physics.Kx=1", "'physics.Kx'", "allowed in [physics]: K, q"}},
+        BadInput{"set_unknown_key_on_file", case_text(kK, kQ, "cells = 64"),
+                 "{CASE} --set hydro.cels=64", {"--set hydro.cels=64", "'hydro.cels'"}},
+        BadInput{"set_wrong_type", "", "--set hydro.cells=abc",
+                 {"--set hydro.cells=abc", "hydro.cells", "abc", "an integer"}},
+        BadInput{"set_K_negative", "", "--set physics.K=-1", {"--set", "physics.K = -1", "> 0"}},
+        BadInput{"set_q_above_half", "", "--set physics.q=0.6",
+                 {"--set", "physics.q = 0.6", "(0, 0.5]"}},
+        BadInput{"set_cells_below_4", "", "--set hydro.cells=2",
+                 {"--set", "hydro.cells = 2", ">= 4"}},
+        BadInput{"set_output_times_beyond_t_end", "", "--set 'hydro.output_times=[1,5]'",
+                 {"--set", "hydro.output_times", "5", "hydro.t_end = 4.0"}},
+        // The quickstart's own output times all lie beyond t = 0.5; the message names the last
+        // one (whatever the file says) and where it came from.
+        BadInput{"set_t_end_before_output_times", "", "--set hydro.t_end=0.5",
+                 {"--set hydro.t_end=0.5", "hydro.t_end = 0.5", "the last being",
+                  "embedded:cases/quickstart.toml:"}},
+        BadInput{"set_on_named_scene", "", "single_mode --set hydro.cells=3",
+                 {"hydro.cells = 3", ">= 4"}}),
+    [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
+
+// The contract: "Nothing already written is lost."
+TEST(CliBadInputKeepsOutput, RejectedRunLeavesAnExistingFolderUntouched) {
+  ScratchFolder scratch("bad-keeps-output");
+  const fs::path out = scratch.path / "out";
+  fs::create_directories(out);
+  write_file(out / "summary.json", "{\"earlier\": true}\n");
+  const CliStreams r = run_cli_streams("run --set physics.K=0 --out " + q(out));
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_EQ(read_text(out / "summary.json"), "{\"earlier\": true}\n");
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(out)) files.push_back(e.path().filename().string());
+  EXPECT_EQ(files, std::vector<std::string>{"summary.json"});
+}
+
+TEST(CliReportCommand, FolderWithoutResultsExitsTwo) {
+  ScratchFolder scratch("report-no-results");
+  const CliStreams r = run_cli_streams("report " + q(scratch.path));
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  const auto lines = lines_of(r.err);
+  ASSERT_EQ(lines.size(), 1u) << describe(r);
+  EXPECT_TRUE(starts_with(lines[0], "granvv: error: ")) << lines[0];
+  EXPECT_TRUE(contains(lines[0], scratch.path.string())) << lines[0];
+  EXPECT_TRUE(contains(lines[0], "results.h5")) << lines[0];
+  EXPECT_TRUE(fs::is_empty(scratch.path)) << "report wrote into a folder without results";
+
+  const CliStreams missing = run_cli_streams("report " + q(scratch.path / "no_such_folder"));
+  EXPECT_EQ(missing.exit_code, 2) << describe(missing);
+  EXPECT_FALSE(fs::exists(scratch.path / "no_such_folder"));
+}
+
+TEST(CliUsage, UnknownSubcommandOrOptionFails) {
+  ScratchFolder scratch("usage");
+  const fs::path out = scratch.path / "out";
+  for (const std::string& args : std::vector<std::string>{"frobnicate", "run --frobnicate --out " + q(out), "run --set", "report", "list extra",
+        ""}) {
+    SCOPED_TRACE("granvv " + args);
+    const CliStreams r = run_cli_streams(args, scratch.path);
+    EXPECT_NE(r.exit_code, 0) << describe(r);
+    EXPECT_FALSE(r.err.empty()) << "a usage error should say what is wrong";
+  }
+  EXPECT_TRUE(fs::is_empty(scratch.path)) << "a usage error wrote files";
+}
+
+TEST(CliUsage, HelpListsTheRunOptions) {
+  const CliStreams r = run_cli_streams("run --help");
+  EXPECT_EQ(r.exit_code, 0) << describe(r);
+  for (const char* option : {"--out", "--set", "--dry-run", "--quiet", "--no-report"}) {
+    EXPECT_TRUE(contains(r.out, option)) << option << " missing from\n" << r.out;
+  }
+  const CliStreams top = run_cli_streams("--help");
+  EXPECT_EQ(top.exit_code, 0) << describe(top);
+  for (const char* sub : {"run", "list", "report"}) {
+    EXPECT_TRUE(contains(top.out, sub)) << sub << " missing from\n" << top.out;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. --dry-run
+// ---------------------------------------------------------------------------------------------
+
+// Compares a node of the resolved TOML with a schema default.
+void expect_equals_default(const toml::node* node, const app::KeySpec& spec) {
+  ASSERT_NE(node, nullptr) << spec.key;
+  const app::Value& v = spec.default_value.value;
+  switch (spec.type) {
+    case app::ValueType::real: {
+      const double expected = std::holds_alternative<long long>(v)
+                                  ? static_cast<double>(std::get<long long>(v))
+                                  : std::get<double>(v);
+      ASSERT_TRUE(node->is_number()) << spec.key;
+      EXPECT_DOUBLE_EQ(node->value<double>().value(), expected) << spec.key;
+      break;
+    }
+    case app::ValueType::integer:
+      ASSERT_TRUE(node->is_integer()) << spec.key;
+      EXPECT_EQ(node->value<std::int64_t>().value(), std::get<long long>(v)) << spec.key;
+      break;
+    case app::ValueType::boolean:
+      ASSERT_TRUE(node->is_boolean()) << spec.key;
+      EXPECT_EQ(node->value<bool>().value(), std::get<bool>(v)) << spec.key;
+      break;
+    case app::ValueType::string:
+      ASSERT_TRUE(node->is_string()) << spec.key;
+      EXPECT_EQ(node->value<std::string>().value(), std::get<std::string>(v)) << spec.key;
+      break;
+    default:
+      break;  // array defaults are the empty array
+  }
+}
+
+TEST(CliDryRun, PrintsTheResolvedQuickstartAndWritesNothing) {
+  ScratchFolder scratch("dry-run");
+  const fs::path out = scratch.path / "out-folder";
+  const CliStreams r = run_cli_streams("run --dry-run --out " + q(out), scratch.path);
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(contains(r.out, "K = 0.0004")) << r.out;
+  EXPECT_TRUE(contains(r.out, "[hydro]")) << r.out;
+
+  const toml::table resolved = parse_toml(r.out, "dry-run output");
+  const toml::table quickstart =
+      toml::parse_file(std::string(GRANVV_SOURCE_DIR) + "/cases/quickstart.toml");
+  EXPECT_EQ(resolved["case"]["name"].value<std::string>(), "quickstart");
+  EXPECT_EQ(resolved["physics"]["K"].value<double>(), 4e-4);
+  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.01);
+
+  // Every key of the schema, the file's values where it has them, the defaults elsewhere.
+  std::size_t hydro_keys = 0;
+  for (const app::KeySpec& spec : app::case_schema()) {
+    SCOPED_TRACE(spec.key);
+    const toml::node* node = resolved.at_path(spec.key).node();
+    ASSERT_NE(node, nullptr) << spec.key << " missing from the resolved case\n" << r.out;
+    if (spec.section() == "hydro") ++hydro_keys;
+    if (const toml::node* given = quickstart.at_path(spec.key).node()) {
+      if (given->is_number()) {
+        EXPECT_DOUBLE_EQ(node->value<double>().value_or(NAN), given->value<double>().value());
+      } else if (given->is_string()) {
+        EXPECT_EQ(node->value<std::string>(), given->value<std::string>());
+      }
+    } else if (spec.default_value.kind == app::Default::Kind::value) {
+      expect_equals_default(node, spec);
+    }
+  }
+  ASSERT_TRUE(resolved["hydro"].is_table());
+  EXPECT_EQ(resolved["hydro"].as_table()->size(), hydro_keys) << "keys outside the schema";
+  EXPECT_GE(hydro_keys, 13u);
+  // Values are compared with the file above; here, that each [hydro] key is printed.
+  for (const char* key : {"cells = ", "t_end = ", "output_times = [",
+                          "cfl = ", "max_compression = ", "max_temperature_change = ",
+                          "dt_max = ", "stop_density = ", "min_cell_width = ",
+                          "transverse_velocity = false", "node_offset = ", "progress_seconds = ",
+                          "series_every = 1"}) {
+    EXPECT_TRUE(contains(r.out, key)) << key;
+  }
+
+  EXPECT_FALSE(fs::exists(out)) << "--dry-run created the output folder";
+  EXPECT_TRUE(fs::is_empty(scratch.path)) << "--dry-run wrote into the working directory";
+}
+
+TEST(CliDryRun, ShowsASetOverride) {
+  ScratchFolder scratch("dry-run-set");
+  const CliStreams r = run_cli_streams("run --set physics.K=1e-3 --dry-run", scratch.path);
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(contains(r.out, "K = 0.001")) << r.out;
+  EXPECT_FALSE(contains(r.out, "K = 0.0004")) << r.out;
+  EXPECT_TRUE(contains(r.out, "--set physics.K=1e-3")) << "the override is recorded\n" << r.out;
+  const toml::table resolved = parse_toml(r.out, "dry-run output");
+  EXPECT_EQ(resolved["physics"]["K"].value<double>(), 1e-3);
+  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.01);
+  EXPECT_TRUE(fs::is_empty(scratch.path));
+}
+
+TEST(CliDryRun, AcceptsAnArrayOverride) {
+  const CliStreams r =
+      run_cli_streams("run single_mode --dry-run --set 'hydro.output_times=[1,2,3.225]'");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(contains(r.out, "output_times = [1.0, 2.0, 3.225]")) << r.out;
+  const toml::table resolved = parse_toml(r.out, "dry-run output");
+  const toml::array* times = resolved["hydro"]["output_times"].as_array();
+  ASSERT_NE(times, nullptr);
+  ASSERT_EQ(times->size(), 3u);
+  EXPECT_EQ((*times)[0].value<double>(), 1.0);
+  EXPECT_EQ((*times)[1].value<double>(), 2.0);
+  EXPECT_EQ((*times)[2].value<double>(), 3.225);
+  EXPECT_EQ(resolved["case"]["name"].value<std::string>(), "single_mode");
+}
+
+TEST(CliDryRun, LastSetOfAKeyWins) {
+  const CliStreams r =
+      run_cli_streams("run --dry-run --set hydro.cells=100 --set hydro.cells=200");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const toml::table resolved = parse_toml(r.out, "dry-run output");
+  EXPECT_EQ(resolved["hydro"]["cells"].value<std::int64_t>(), 200);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. granvv list
+// ---------------------------------------------------------------------------------------------
+TEST(CliList, ListsTheScenesWithTheirDescriptions) {
+  const CliStreams r = run_cli_streams("list");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const auto lines = lines_of(r.out);
+  std::set<std::string> scenes;
+  for (const auto& e : fs::directory_iterator(fs::path(GRANVV_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() == ".toml") scenes.insert(e.path().stem().string());
+  }
+  EXPECT_TRUE(scenes.count("quickstart"));
+  EXPECT_TRUE(scenes.count("single_mode"));
+  for (const std::string& scene : scenes) {
+    SCOPED_TRACE(scene);
+    const toml::table t = toml::parse_file(
+        (fs::path(GRANVV_SOURCE_DIR) / "cases" / (scene + ".toml")).string());
+    const std::string description = t["case"]["description"].value_or(std::string());
+    EXPECT_FALSE(description.empty());
+    bool found = false;
+    for (const auto& line : lines) {
+      found |= starts_with(line, scene + " ") && contains(line, description);
+    }
+    EXPECT_TRUE(found) << "no line '" << scene << "  " << description << "' in\n" << r.out;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 4. A real small run and its output folder
+// ---------------------------------------------------------------------------------------------
+class CliSmallRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(fresh_directory("small-run"));
+    result_ = new CliStreams(run_cli_streams(
+        "run single_mode --no-report --out " + q(dir()) + " " + kSmall, *root_));
+  }
+  static void TearDownTestSuite() {
+    const auto* suite = ::testing::UnitTest::GetInstance()->current_test_suite();
+    if (suite && !suite->failed_test_count()) {
+      std::error_code ec;
+      fs::remove_all(*root_, ec);
+    }
+    delete result_;
+    delete root_;
+  }
+  static fs::path dir() { return *root_ / "run"; }
+  static const CliStreams& result() { return *result_; }
+  static json summary() {
+    const std::string text = read_text(dir() / "summary.json");
+    json j = json::parse(text, nullptr, false);
+    EXPECT_FALSE(j.is_discarded()) << "summary.json is not JSON:\n" << text;
+    return j;
+  }
+
+  static fs::path* root_;
+  static CliStreams* result_;
+};
+fs::path* CliSmallRun::root_ = nullptr;
+CliStreams* CliSmallRun::result_ = nullptr;
+
+TEST_F(CliSmallRun, ExitsZeroAndFillsTheOutputFolder) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  for (const char* file : {"results.h5", "summary.json", "run.log", "case.toml"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir() / file)) << file << " missing in " << dir();
+    EXPECT_GT(fs::file_size(dir() / file), 0u) << file;
+  }
+  EXPECT_TRUE(has_signature(dir() / "results.h5", kHdf5Magic)) << "results.h5 is not HDF5";
+  EXPECT_FALSE(fs::exists(dir() / "report.html")) << "--no-report wrote a report";
+  for (const auto& e : fs::directory_iterator(dir())) {
+    EXPECT_NE(e.path().extension(), ".partial") << "left behind: " << e.path();
+  }
+  EXPECT_FALSE(fs::exists(*root_ / "out")) << "--out was ignored";
+}
+
+TEST_F(CliSmallRun, SummaryJsonFollowsTheContract) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  json s = summary();
+  ASSERT_TRUE(s.is_object());
+  EXPECT_EQ(s.value("case", ""), "single_mode");
+  ASSERT_TRUE(s["status"].is_string());
+  const std::string status = s["status"];
+  EXPECT_TRUE(status == "ok" || status == "singularity") << status;
+  EXPECT_TRUE(s.contains("md") && s["md"].is_null()) << s.dump(2);
+  EXPECT_TRUE(s.contains("compare") && s["compare"].is_null()) << s.dump(2);
+
+  ASSERT_TRUE(s["hydro"].is_object()) << s.dump(2);
+  json& h = s["hydro"];
+  EXPECT_EQ(h["status"], s["status"]);
+  ASSERT_TRUE(h["wall_seconds"].is_number()) << h.dump(2);
+  EXPECT_GE(h["wall_seconds"].get<double>(), 0.0);
+  EXPECT_TRUE(h["cells"].is_number_integer());
+  EXPECT_EQ(h["cells"], 64);
+  ASSERT_TRUE(h["steps"].is_number_integer()) << h.dump(2);
+  EXPECT_GT(h["steps"].get<long long>(), 0);
+  EXPECT_EQ(h["unstable_modes"], 79) << "K = 4e-4, q = 0.01 has 79 unstable modes (the paper)";
+  EXPECT_TRUE(h.contains("singularity_time"));
+  EXPECT_TRUE(h["singularity_time"].is_null() || h["singularity_time"].is_number());
+  if (status == "ok") {
+    EXPECT_TRUE(h["singularity_time"].is_null()) << h.dump(2);
+  }
+
+  ASSERT_TRUE(h["peak_density_times"].is_object()) << h.dump(2);
+  std::set<std::string> keys;
+  for (const auto& [key, value] : h["peak_density_times"].items()) {
+    keys.insert(key);
+    EXPECT_TRUE(value.is_null() || value.is_number()) << key << ": " << value;
+  }
+  EXPECT_EQ(keys, (std::set<std::string>{"10", "100", "1000", "1e6"}));
+
+  ASSERT_TRUE(h["snapshots"].is_array()) << h.dump(2);
+  ASSERT_EQ(h["snapshots"].size(), 1u) << "one snapshot per output time (0.25)";
+  json& snap = h["snapshots"][0];
+  for (const char* field : {"t", "n_max", "T_min", "energy", "energy_thermal", "energy_kinetic"}) {
+    EXPECT_TRUE(snap.contains(field) && snap[field].is_number()) << field << " in " << snap.dump();
+  }
+  EXPECT_DOUBLE_EQ(snap.value("t", NAN), 0.25);
+  EXPECT_GE(snap.value("n_max", NAN), 1.0);
+  EXPECT_GT(snap.value("T_min", NAN), 0.0);
+  EXPECT_NEAR(snap.value("energy", NAN),
+              snap.value("energy_thermal", NAN) + snap.value("energy_kinetic", NAN) +
+                  snap.value("energy_kinetic_y", 0.0),
+              1e-12 * std::abs(snap.value("energy", 1.0)));
+}
+
+TEST_F(CliSmallRun, StderrHasProgressStopReasonAndThroughput) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  const std::string& err = result().err;
+  EXPECT_TRUE(contains(err, "step ")) << "no progress line:\n" << err;
+  EXPECT_TRUE(contains(err, "hydro stopped: end time reached")) << err;
+  EXPECT_TRUE(contains(err, "cell-steps/s")) << err;
+  EXPECT_FALSE(contains(err, "error")) << err;
+}
+
+TEST_F(CliSmallRun, RunLogRecordsTheRun) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  const std::string log = read_text(dir() / "run.log");
+  EXPECT_TRUE(contains(log, "running case 'single_mode'")) << log;
+  EXPECT_TRUE(contains(log, "hydro stopped:")) << log;
+  EXPECT_TRUE(contains(log, "cell-steps/s")) << log;
+  EXPECT_TRUE(contains(log, "cells = 64")) << "the resolved case is logged";
+}
+
+TEST_F(CliSmallRun, ResolvedCaseFileRunsAgain) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  const std::string written = read_text(dir() / "case.toml");
+  EXPECT_TRUE(contains(written, "cells = 64")) << written;
+  EXPECT_TRUE(contains(written, "--set hydro.cells=64")) << "the overrides are recorded";
+  const CliStreams again = run_cli_streams("run " + q(dir() / "case.toml") + " --dry-run");
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  // Resolving the resolved case changes nothing (only the header comment differs).
+  EXPECT_EQ(parse_toml(again.out, "re-resolved case"), parse_toml(written, "case.toml"))
+      << "--- case.toml ---\n" << written << "--- resolved again ---\n" << again.out;
+}
+
+TEST(CliQuiet, QuietRunWritesNothingOnStderr) {
+  ScratchFolder scratch("quiet");
+  const fs::path out = scratch.path / "run";
+  const CliStreams r =
+      run_cli_streams("run single_mode --quiet --no-report --out " + q(out) + " " + kSmall);
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(r.err, "") << "--quiet still printed on stderr";
+  EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+  EXPECT_TRUE(contains(read_text(out / "run.log"), "hydro stopped:"))
+      << "--quiet silences the console, not the log";
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. The report (the one test that runs scripts/report.py)
+// ---------------------------------------------------------------------------------------------
+std::vector<std::string> image_sources(const std::string& html) {
+  static const std::regex img(R"(<img\b[^>]*?\bsrc\s*=\s*["']([^"']*)["'])",
+                              std::regex::icase);
+  std::vector<std::string> sources;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator();
+       ++it) {
+    sources.push_back((*it)[1].str());
+  }
+  return sources;
+}
+
+TEST(CliReport, QuickstartReportReferencesExistingFigures) {
+  ScratchFolder scratch("report");
+  const fs::path out = scratch.path / "quickstart";
+  const CliStreams r = run_cli_streams("run quickstart --quiet --out " + q(out) + " " + kSmall);
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  ASSERT_TRUE(fs::is_regular_file(out / "report.html")) << describe(r);
+
+  const auto check_report = [&] {
+    const std::string html = read_text(out / "report.html");
+    const auto sources = image_sources(html);
+    EXPECT_FALSE(sources.empty()) << "report.html has no <img>";
+    for (const std::string& src : sources) {
+      SCOPED_TRACE(src);
+      EXPECT_TRUE(starts_with(src, "figures/")) << "figures are referenced relative to the folder";
+      EXPECT_EQ(fs::path(src).extension(), ".png");
+      EXPECT_TRUE(fs::is_regular_file(out / src)) << src << " referenced but missing";
+      EXPECT_TRUE(has_signature(out / src, kPngMagic)) << src << " is not a PNG";
+    }
+  };
+  check_report();
+
+  // `granvv report DIR` rebuilds the report from results.h5.
+  fs::remove(out / "report.html");
+  const CliStreams rebuilt = run_cli_streams("report " + q(out));
+  EXPECT_EQ(rebuilt.exit_code, 0) << describe(rebuilt);
+  ASSERT_TRUE(fs::is_regular_file(out / "report.html")) << describe(rebuilt);
+  check_report();
+}
+
+// ---------------------------------------------------------------------------------------------
+// 6. `granvv run` with no case: the embedded quickstart
+// ---------------------------------------------------------------------------------------------
+TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
+  ScratchFolder scratch("default-scene");
+  const fs::path out = scratch.path / "run";
+  const fs::path no_cases = scratch.path / "empty-cases";
+  fs::create_directories(no_cases);
+  // With an empty scene catalog, the quickstart must still come from the binary itself.
+  ::setenv("GRANVV_CASES_DIR", no_cases.c_str(), 1);
+  const CliStreams r = run_cli_streams(
+      "run --quiet --no-report --set hydro.cells=64 --out " + q(out), scratch.path);
+  ::unsetenv("GRANVV_CASES_DIR");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+
+  json s = json::parse(read_text(out / "summary.json"), nullptr, false);
+  ASSERT_TRUE(s.is_object()) << read_text(out / "summary.json");
+  EXPECT_EQ(s.value("case", ""), "quickstart");
+  const std::string status = s.value("status", "");
+  EXPECT_TRUE(status == "ok" || status == "singularity") << status;
+  EXPECT_EQ(s["hydro"]["cells"], 64);
+  EXPECT_EQ(s["hydro"]["snapshots"].size() + s["hydro"]["output_times_not_reached"].size(), 3u)
+      << "quickstart has output_times = [1, 2, 3]";
+  EXPECT_TRUE(contains(read_text(out / "case.toml"), "embedded:cases/quickstart.toml"));
+  EXPECT_TRUE(fs::is_regular_file(out / "results.h5"));
+  EXPECT_FALSE(fs::exists(scratch.path / "out")) << "--out was ignored";
+}
+
+TEST(CliDefaultScene, DefaultOutputFolderIsOutSlashCaseName) {
+  ScratchFolder scratch("default-out");
+  const CliStreams r =
+      run_cli_streams("run single_mode --quiet --no-report " + kSmall, scratch.path);
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const fs::path out = scratch.path / "out" / "single_mode";
+  for (const char* file : {"results.h5", "summary.json", "run.log", "case.toml"}) {
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file << " missing in " << out;
+  }
+}
+
+}  // namespace
+}  // namespace granvv::testing
