@@ -22,11 +22,13 @@ CaseSource locate_case(const std::string& name) {
   if (name.empty()) return {kQuickstartToml, "embedded:cases/quickstart.toml"};
   fs::path path = name;
   if (!fs::is_regular_file(path)) {
-    const fs::path in_catalog = cases_directory() / (path.extension() == ".toml" ? name : name + ".toml");
+    const fs::path in_catalog =
+        cases_directory() / (path.extension() == ".toml" ? name : name + ".toml");
     if (fs::is_regular_file(in_catalog)) {
       path = in_catalog;
     } else {
-      throw ConfigError("case '" + name + "' not found: no such file, and no scene of that name in " +
+      throw ConfigError("case '" + name +
+                        "' not found: no such file, and no scene of that name in " +
                         cases_directory().string() + " (`granvv list` shows the scenes)");
     }
   }

@@ -8,7 +8,7 @@
 namespace granvv::app {
 
 struct CaseSource {
-  std::string text;         // the TOML text
+  std::string text;    // the TOML text
   std::string origin;  // shown in messages: the file path, or "embedded:cases/quickstart.toml"
 };
 

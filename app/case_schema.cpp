@@ -54,6 +54,10 @@ const std::vector<KeySpec>& case_schema() {
        "linear_mode: amplitude of the linear eigenmode"},
       {"initial.linear_branch", kInteger, 0, closed_closed(0, 2),
        "linear_mode: eigenvalue branch, 0 = most unstable"},
+      {"initial.transverse_amplitude", kReal, 0.0, any_value(),
+       "amplitude b of a transverse velocity v_y = b cos(2 pi k_y x) (needs "
+       "hydro.transverse_velocity)"},
+      {"initial.transverse_mode", kInteger, 1, at_least(1), "mode k_y of the transverse velocity"},
 
       // [hydro]
       {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},

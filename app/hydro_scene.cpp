@@ -20,6 +20,8 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   ini.seed = static_cast<unsigned long long>(c.integer("initial.seed"));
   ini.linear_amplitude = c.real("initial.linear_amplitude");
   ini.linear_branch = static_cast<int>(c.integer("initial.linear_branch"));
+  ini.transverse_amplitude = c.real("initial.transverse_amplitude");
+  ini.transverse_mode = static_cast<int>(c.integer("initial.transverse_mode"));
   s.cells = static_cast<int>(c.integer("hydro.cells"));
   s.node_offset = c.real("hydro.node_offset");
   s.transverse = c.boolean("hydro.transverse_velocity");
@@ -45,13 +47,21 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
 
   // Combinations the engine cannot run.
   if (s.convergence_cells.size() == 1 || s.convergence_cells.size() == 2) {
-    throw ConfigError("convergence.cells has " + std::to_string(s.convergence_cells.size()) +
+    throw ConfigError(c.origin("convergence.cells") + ": convergence.cells has " +
+                      std::to_string(s.convergence_cells.size()) +
                       " levels: an observed order needs at least 3 (or [] for no study)");
   }
   const std::string mesh = hydro::convergence_mesh_problem(s.convergence_cells, s.node_offset);
-  if (!mesh.empty()) throw ConfigError("convergence.cells: " + mesh);
+  if (!mesh.empty())
+    throw ConfigError(c.origin("convergence.cells") + ": convergence.cells: " + mesh);
+  if (ini.transverse_amplitude != 0.0 && !s.transverse) {
+    throw ConfigError(c.origin("initial.transverse_amplitude") +
+                      ": initial.transverse_amplitude = " + format_real(ini.transverse_amplitude) +
+                      ": a transverse velocity needs hydro.transverse_velocity = true");
+  }
   if (ini.type == "linear_mode" && ini.linear_amplitude > 1e-2) {
-    throw ConfigError("initial.linear_amplitude = " + std::to_string(ini.linear_amplitude) +
+    throw ConfigError(c.origin("initial.linear_amplitude") +
+                      ": initial.linear_amplitude = " + format_real(ini.linear_amplitude) +
                       ": a linear mode must be small; allowed: (0, 0.01]");
   }
   const auto fields = hydro::make_initial_fields(ini, s.physics);
@@ -81,8 +91,8 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   const bool smooth_velocity = scene.initial.type == "single_mode";
   std::optional<hydro::FlowByInertia> inertia;
   if (smooth_velocity) {
-    inertia = hydro::FlowByInertia::single_mode(scene.initial.velocity_amplitude,
-                                                scene.initial.mode);
+    inertia =
+        hydro::FlowByInertia::single_mode(scene.initial.velocity_amplitude, scene.initial.mode);
     const double tau = inertia->singularity_time();
     if (std::isfinite(tau)) out.inertia_tau = tau;
   }
@@ -104,9 +114,8 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   }
 
   // Paper Fig. 4: tau from 1/n_max(t), the density profile near the peak.
-  out.singularity = hydro::fit_singularity_time(run.series.t, run.series.n_max,
-                                                scene.tau_fit_min_density,
-                                                scene.tau_fit_max_density);
+  out.singularity = hydro::fit_singularity_time(
+      run.series.t, run.series.n_max, scene.tau_fit_min_density, scene.tau_fit_max_density);
   const auto& t = run.series.t;
   const auto& n = run.series.n_max;
   const size_t last = t.size() - 1;

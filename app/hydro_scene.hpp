@@ -51,7 +51,7 @@ struct HydroOutcome {
   std::optional<double> blowup_time;
   std::optional<hydro::ProfileSlope> profile_slope;
   double profile_slope_time = 0.0;
-  std::optional<double> inertia_tau;  // flow-by-inertia singularity time of the initial v
+  std::optional<double> inertia_tau;     // flow-by-inertia singularity time of the initial v
   double haff_max_relative_error = 0.0;  // of the mass-weighted mean T against Haff's law
   std::optional<hydro::MeasuredRate> linear_rate;
   std::optional<hydro::ConvergenceStudy> convergence;

@@ -50,8 +50,7 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& log_file, bool quiet
 // Fraction done: by time towards t_end, or by decades of density towards the singularity.
 double progress_fraction(const hydro::Progress& p) {
   const double by_time = p.t / p.t_end;
-  const double by_density =
-      p.n_max > 1.0 ? std::log(p.n_max) / std::log(p.stop_density) : 0.0;
+  const double by_density = p.n_max > 1.0 ? std::log(p.n_max) / std::log(p.stop_density) : 0.0;
   return std::clamp(std::max(by_time, by_density), 1e-9, 1.0);
 }
 
@@ -89,13 +88,10 @@ int run_command(const RunOptions& options) {
   log->info("resolved configuration:\n{}", config.resolved_toml());
   write_file_atomically(dir / "case.toml", config.resolved_toml());
 
-  nlohmann::json summary = {{"case", config.name()},
-                            {"status", "failed"},
-                            {"granvv_version", GRANVV_VERSION},
-                            {"output_dir", dir.string()},
-                            {"hydro", nullptr},
-                            {"md", nullptr},
-                            {"compare", nullptr}};
+  nlohmann::json summary = {
+      {"case", config.name()},      {"status", "failed"}, {"granvv_version", GRANVV_VERSION},
+      {"output_dir", dir.string()}, {"hydro", nullptr},   {"md", nullptr},
+      {"compare", nullptr}};
   int exit_code = 0;
   try {
     auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);

@@ -61,7 +61,7 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["singularity_time"] = number_or_null(tau);
   if (out.singularity) {
     const auto& f = *out.singularity;
-    h["tau_fit_window"] = {{"n_min", f.n_min}, {"n_max", f.n_max}, {"t_min", f.t_min},
+    h["tau_fit_window"] = {{"n_min", f.n_min}, {"n_max", f.n_max},   {"t_min", f.t_min},
                            {"t_max", f.t_max}, {"points", f.points}, {"tau", f.tau}};
   } else {
     h["tau_fit_window"] = nullptr;
@@ -104,8 +104,11 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
 
   if (out.profile_slope) {
     const auto& p = *out.profile_slope;
-    h["profile_slope"] = {{"t", out.profile_slope_time}, {"slope", p.slope}, {"x_min", p.x_min},
-                          {"x_max", p.x_max},           {"points", p.points}};
+    h["profile_slope"] = {{"t", out.profile_slope_time},
+                          {"slope", p.slope},
+                          {"x_min", p.x_min},
+                          {"x_max", p.x_max},
+                          {"points", p.points}};
   } else {
     h["profile_slope"] = nullptr;
   }

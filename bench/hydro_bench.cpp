@@ -36,8 +36,8 @@ void SingleModeToSingularity(benchmark::State& state) {
   }
   state.counters["steps"] = double(steps);
   state.counters["t_stop"] = tau;
-  state.counters["cell_steps_per_s"] =
-      benchmark::Counter(double(steps) * scene.cells * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["cell_steps_per_s"] = benchmark::Counter(
+      double(steps) * scene.cells * state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(SingleModeToSingularity)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
 

@@ -57,8 +57,8 @@ std::string convergence_mesh_problem(const std::vector<int>& cells, double node_
 }
 
 ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFields& fields,
-                                       const std::vector<int>& cells, double node_offset,
-                                       double t, const TimeStepControl& base) {
+                                       const std::vector<int>& cells, double node_offset, double t,
+                                       const TimeStepControl& base) {
   const auto start = std::chrono::steady_clock::now();
   ConvergenceStudy study;
   study.t = t;

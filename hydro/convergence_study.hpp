@@ -28,7 +28,7 @@ struct ConvergenceStudy {
 std::string convergence_mesh_problem(const std::vector<int>& cells, double node_offset);
 
 ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFields& fields,
-                                       const std::vector<int>& cells, double node_offset,
-                                       double t, const TimeStepControl& base);
+                                       const std::vector<int>& cells, double node_offset, double t,
+                                       const TimeStepControl& base);
 
 }  // namespace granvv::hydro

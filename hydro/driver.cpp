@@ -71,8 +71,8 @@ RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl&
   TimeStepLimit limit{0.0, ""};
 
   auto drift = [&](const Diagnostics& now) {
-    result.energy_drift = std::max(result.energy_drift,
-                                   std::abs(now.energy() + cooled - d0.energy()) / d0.energy());
+    result.energy_drift =
+        std::max(result.energy_drift, std::abs(now.energy() + cooled - d0.energy()) / d0.energy());
     result.momentum_drift = std::max(result.momentum_drift, std::abs(now.momentum - d0.momentum));
     result.mass_drift = std::max(result.mass_drift, std::abs(now.mass - d0.mass));
   };

@@ -18,7 +18,7 @@ struct RunControl {
   double t_end = 1.0;
   std::vector<double> output_times;  // snapshots are taken exactly at these times
   TimeStepControl time_step;
-  double stop_density = 1e6;     // singularity: peak density reaches this
+  double stop_density = 1e6;      // singularity: peak density reaches this
   double min_cell_width = 1e-14;  // singularity: a cell gets this thin
   std::vector<double> crossing_densities = {10.0, 100.0, 1000.0, 1e6};
   int series_every = 1;

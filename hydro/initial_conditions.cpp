@@ -108,11 +108,15 @@ InitialFields make_initial_fields(const InitialParameters& p, const Physics& phy
   const auto& registry = initial_condition_registry();
   const auto it = registry.find(p.type);
   if (it == registry.end()) throw std::invalid_argument("unknown initial condition " + p.type);
-  return it->second(p, physics);
+  InitialFields f = it->second(p, physics);
+  if (p.transverse_amplitude != 0.0) {
+    const double b = p.transverse_amplitude, ky = 2.0 * kPi * p.transverse_mode;
+    f.vy = [b, ky](double x) { return b * std::cos(ky * x); };
+  }
+  return f;
 }
 
-LagrangianState discretize(const InitialFields& f, int cells, double node_offset,
-                           bool transverse) {
+LagrangianState discretize(const InitialFields& f, int cells, double node_offset, bool transverse) {
   static const double gauss_x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
   static const double gauss_w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   LagrangianState s;

@@ -28,6 +28,10 @@ struct InitialParameters {
   unsigned long long seed = 1;
   double linear_amplitude = 1e-6;
   int linear_branch = 0;  // 0: fastest-growing eigenmode of mode k, 1, 2: the others
+  // Any scene may add a transverse velocity v_y = b cos(2 pi k_y x): the shear mode whose
+  // growth in a long box the 1D model leaves out unless v_y is carried (DESIGN.md §6).
+  double transverse_amplitude = 0.0;
+  int transverse_mode = 1;
 };
 
 using InitialConditionGenerator =

@@ -13,8 +13,8 @@ namespace granvv::hydro {
 
 struct StepOutcome {
   bool accepted = false;
-  double energy_cooled = 0.0;         // energy removed by inelastic cooling in this step
-  double relative_heating = 0.0;      // largest |dT/T| from work and conduction (not cooling)
+  double energy_cooled = 0.0;     // energy removed by inelastic cooling in this step
+  double relative_heating = 0.0;  // largest |dT/T| from work and conduction (not cooling)
 };
 
 // Cool every cell exactly at its fixed density for dt; returns the energy removed.

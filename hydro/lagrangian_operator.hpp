@@ -19,9 +19,9 @@ namespace granvv::hydro {
 
 // Coefficients frozen over one pass, evaluated at one time level (or a mean of two).
 struct FrozenCoefficients {
-  std::vector<double> pressure;          // p_i = n_i T_i per cell
-  std::vector<double> viscous_coupling;  // a_i = eta(T_i) / dx_i per cell
-  std::vector<double> heat_coupling;     // b_j = kappa_j / h_j at node j (between cells j-1, j)
+  std::vector<double> pressure;           // p_i = n_i T_i per cell
+  std::vector<double> viscous_coupling;   // a_i = eta(T_i) / dx_i per cell
+  std::vector<double> heat_coupling;      // b_j = kappa_j / h_j at node j (between cells j-1, j)
   std::vector<double> acoustic_coupling;  // alpha_i = p_i dt / dx_i (implicit adiabatic response)
   std::vector<double> reference_dv;       // dv_ref_i about which the pressure is linearised
 };

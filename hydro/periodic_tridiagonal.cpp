@@ -33,7 +33,8 @@ bool PeriodicTridiagonalSolver::factorize(const std::vector<double>& diag,
   return ldlt_.info() == Eigen::Success;
 }
 
-void PeriodicTridiagonalSolver::solve(const std::vector<double>& rhs, std::vector<double>& solution) {
+void PeriodicTridiagonalSolver::solve(const std::vector<double>& rhs,
+                                      std::vector<double>& solution) {
   for (int i = 0; i < n_; ++i) rhs_[i] = rhs[i];
   solution_ = ldlt_.solve(rhs_);
   solution.resize(n_);

@@ -2,14 +2,13 @@
 // bad input, --dry-run, `granvv list`, a small real run and its output folder, the report, and
 // the embedded default scene. Runs use tiny meshes so the whole file takes a few seconds.
 #include <gtest/gtest.h>
-
-#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <string>
@@ -29,7 +28,9 @@ const std::string kSmall =
     "--set hydro.cells=64 --set 'convergence.cells=[]' --set hydro.t_end=0.5 "
     "--set 'hydro.output_times=[0.25]'";
 
-std::string q(const fs::path& p) { return shell_quote(p.string()); }
+std::string q(const fs::path& p) {
+  return shell_quote(p.string());
+}
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -68,8 +69,8 @@ const std::string kHdf5Magic("\x89HDF\r\n\x1a\n", 8);
 const std::string kPngMagic("\x89PNG\r\n\x1a\n", 8);
 
 std::string describe(const CliStreams& r) {
-  return "exit " + std::to_string(r.exit_code) + "\n--- stdout ---\n" + r.out +
-         "--- stderr ---\n" + r.err;
+  return "exit " + std::to_string(r.exit_code) + "\n--- stdout ---\n" + r.out + "--- stderr ---\n" +
+         r.err;
 }
 
 // Parses TOML text, failing the test (and returning an empty table) if it is not TOML.
@@ -106,8 +107,12 @@ std::string case_text(const std::string& K, const std::string& q_value,
          "name = \"cli_bad_input\"\n"
          "\n"
          "[physics]\n"
-         "K = " + K + "\n"
-         "q = " + q_value + "\n"
+         "K = " +
+         K +
+         "\n"
+         "q = " +
+         q_value +
+         "\n"
          "\n"
          "[hydro]\n" +
          hydro_lines + "\n";
@@ -131,7 +136,9 @@ std::string substitute(std::string s, const fs::path& dir, const fs::path& case_
   return s;
 }
 
-std::ostream& operator<<(std::ostream& os, const BadInput& b) { return os << b.name; }
+std::ostream& operator<<(std::ostream& os, const BadInput& b) {
+  return os << b.name;
+}
 
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
@@ -166,60 +173,99 @@ INSTANTIATE_TEST_SUITE_P(
     Cli, CliBadInput,
     ::testing::Values(
         // Case files: the message names file:line, the key, the value and what is allowed.
-        BadInput{"unknown_key_in_file", case_text(kK, kQ, "cels = 64"), "{CASE}",
+        BadInput{"unknown_key_in_file",
+                 case_text(kK, kQ, "cels = 64"),
+                 "{CASE}",
                  {"{CASE}:9:", "'hydro.cels'", "did you mean 'hydro.cells'", "allowed"}},
-        BadInput{"unknown_table_in_file", case_text(kK, kQ, "cells = 64\n[hydrox]\ncells = 64"),
+        BadInput{"unknown_table_in_file",
+                 case_text(kK, kQ, "cells = 64\n[hydrox]\ncells = 64"),
                  "{CASE}",
                  {"{CASE}:10:", "hydrox", "allowed"}},
-        BadInput{"wrong_type_string_for_integer", case_text(kK, kQ, "cells = \"many\""), "{CASE}",
+        BadInput{"wrong_type_string_for_integer",
+                 case_text(kK, kQ, "cells = \"many\""),
+                 "{CASE}",
                  {"{CASE}:9:", "hydro.cells", "\"many\"", "an integer"}},
-        BadInput{"wrong_type_real_for_integer", case_text(kK, kQ, "cells = 64.5"), "{CASE}",
+        BadInput{"wrong_type_real_for_integer",
+                 case_text(kK, kQ, "cells = 64.5"),
+                 "{CASE}",
                  {"{CASE}:9:", "hydro.cells", "64.5", "an integer"}},
-        BadInput{"wrong_type_string_for_real", case_text("\"big\"", kQ, "cells = 64"), "{CASE}",
+        BadInput{"wrong_type_string_for_real",
+                 case_text("\"big\"", kQ, "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:5:", "physics.K", "\"big\"", "a real"}},
-        BadInput{"K_zero", case_text("0", kQ, "cells = 64"), "{CASE}",
+        BadInput{"K_zero",
+                 case_text("0", kQ, "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:5:", "physics.K = 0", "> 0"}},
-        BadInput{"K_negative", case_text("-1e-3", kQ, "cells = 64"), "{CASE}",
+        BadInput{"K_negative",
+                 case_text("-1e-3", kQ, "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:5:", "physics.K = -0.001", "> 0"}},
-        BadInput{"q_zero", case_text(kK, "0.0", "cells = 64"), "{CASE}",
+        BadInput{"q_zero",
+                 case_text(kK, "0.0", "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:6:", "physics.q = 0", "(0, 0.5]"}},
-        BadInput{"q_negative", case_text(kK, "-0.1", "cells = 64"), "{CASE}",
+        BadInput{"q_negative",
+                 case_text(kK, "-0.1", "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:6:", "physics.q = -0.1", "(0, 0.5]"}},
-        BadInput{"q_above_half", case_text(kK, "0.6", "cells = 64"), "{CASE}",
+        BadInput{"q_above_half",
+                 case_text(kK, "0.6", "cells = 64"),
+                 "{CASE}",
                  {"{CASE}:6:", "physics.q = 0.6", "(0, 0.5]"}},
-        BadInput{"cells_below_4", case_text(kK, kQ, "cells = 3"), "{CASE}",
+        BadInput{"cells_below_4",
+                 case_text(kK, kQ, "cells = 3"),
+                 "{CASE}",
                  {"{CASE}:9:", "hydro.cells = 3", ">= 4"}},
         BadInput{"output_times_beyond_t_end_in_file",
-                 case_text(kK, kQ, "t_end = 1.0\noutput_times = [0.5, 2.0]"), "{CASE}",
+                 case_text(kK, kQ, "t_end = 1.0\noutput_times = [0.5, 2.0]"),
+                 "{CASE}",
                  {"{CASE}:10:", "hydro.output_times", "2.0", "hydro.t_end = 1.0", "<="}},
-        BadInput{"toml_syntax_error", case_text(kK, kQ, "cells = = 3"), "{CASE}",
+        BadInput{"toml_syntax_error",
+                 case_text(kK, kQ, "cells = = 3"),
+                 "{CASE}",
                  {"{CASE}:9:", "syntax"}},
-        BadInput{"missing_case_file", "", "{DIR}/no_such_case.toml",
+        BadInput{"missing_case_file",
+                 "",
+                 "{DIR}/no_such_case.toml",
                  {"{DIR}/no_such_case.toml", "not found"}},
         BadInput{"unknown_scene_name", "", "no_such_scene", {"'no_such_scene'", "not found"}},
         // --set: the message names the --set argument, the key, the value and what is allowed.
-        BadInput{"set_without_equals", "", "--set physics.K",
-                 {"--set", "physics.K", "KEY=VALUE"}},
+        BadInput{"set_without_equals", "", "--set physics.K", {"--set", "physics.K", "KEY=VALUE"}},
         BadInput{"set_without_dotted_key", "", "--set K=1e-3", {"--set", "K=1e-3", "KEY=VALUE"}},
-        BadInput{"set_unknown_key", "", "--set physics.Kx=1",
+        BadInput{"set_unknown_key",
+                 "",
+                 "--set physics.Kx=1",
                  {"--set physics.Kx=1", "'physics.Kx'", "allowed in [physics]: K, q"}},
-        BadInput{"set_unknown_key_on_file", case_text(kK, kQ, "cells = 64"),
-                 "{CASE} --set hydro.cels=64", {"--set hydro.cels=64", "'hydro.cels'"}},
-        BadInput{"set_wrong_type", "", "--set hydro.cells=abc",
+        BadInput{"set_unknown_key_on_file",
+                 case_text(kK, kQ, "cells = 64"),
+                 "{CASE} --set hydro.cels=64",
+                 {"--set hydro.cels=64", "'hydro.cels'"}},
+        BadInput{"set_wrong_type",
+                 "",
+                 "--set hydro.cells=abc",
                  {"--set hydro.cells=abc", "hydro.cells", "abc", "an integer"}},
         BadInput{"set_K_negative", "", "--set physics.K=-1", {"--set", "physics.K = -1", "> 0"}},
-        BadInput{"set_q_above_half", "", "--set physics.q=0.6",
+        BadInput{"set_q_above_half",
+                 "",
+                 "--set physics.q=0.6",
                  {"--set", "physics.q = 0.6", "(0, 0.5]"}},
-        BadInput{"set_cells_below_4", "", "--set hydro.cells=2",
-                 {"--set", "hydro.cells = 2", ">= 4"}},
-        BadInput{"set_output_times_beyond_t_end", "", "--set 'hydro.output_times=[1,5]'",
+        BadInput{
+            "set_cells_below_4", "", "--set hydro.cells=2", {"--set", "hydro.cells = 2", ">= 4"}},
+        BadInput{"set_output_times_beyond_t_end",
+                 "",
+                 "--set 'hydro.output_times=[1,5]'",
                  {"--set", "hydro.output_times", "5", "hydro.t_end = 4.0"}},
         // The quickstart's own output times all lie beyond t = 0.5; the message names the last
         // one (whatever the file says) and where it came from.
-        BadInput{"set_t_end_before_output_times", "", "--set hydro.t_end=0.5",
+        BadInput{"set_t_end_before_output_times",
+                 "",
+                 "--set hydro.t_end=0.5",
                  {"--set hydro.t_end=0.5", "hydro.t_end = 0.5", "the last being",
                   "embedded:cases/quickstart.toml:"}},
-        BadInput{"set_on_named_scene", "", "single_mode --set hydro.cells=3",
+        BadInput{"set_on_named_scene",
+                 "",
+                 "single_mode --set hydro.cells=3",
                  {"hydro.cells = 3", ">= 4"}}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
@@ -256,8 +302,9 @@ TEST(CliReportCommand, FolderWithoutResultsExitsTwo) {
 TEST(CliUsage, UnknownSubcommandOrOptionFails) {
   ScratchFolder scratch("usage");
   const fs::path out = scratch.path / "out";
-  for (const std::string& args : std::vector<std::string>{"frobnicate", "run --frobnicate --out " + q(out), "run --set", "report", "list extra",
-        ""}) {
+  for (const std::string& args :
+       std::vector<std::string>{"frobnicate", "run --frobnicate --out " + q(out), "run --set",
+                                "report", "list extra", ""}) {
     SCOPED_TRACE("granvv " + args);
     const CliStreams r = run_cli_streams(args, scratch.path);
     EXPECT_NE(r.exit_code, 0) << describe(r);
@@ -351,10 +398,9 @@ TEST(CliDryRun, PrintsTheResolvedQuickstartAndWritesNothing) {
   EXPECT_GE(hydro_keys, 13u);
   // Values are compared with the file above; here, that each [hydro] key is printed.
   for (const char* key : {"cells = ", "t_end = ", "output_times = [",
-                          "cfl = ", "max_compression = ", "max_temperature_change = ",
-                          "dt_max = ", "stop_density = ", "min_cell_width = ",
-                          "transverse_velocity = false", "node_offset = ", "progress_seconds = ",
-                          "series_every = 1"}) {
+                          "cfl = ", "max_compression = ", "max_temperature_change = ", "dt_max = ",
+                          "stop_density = ", "min_cell_width = ", "transverse_velocity = false",
+                          "node_offset = ", "progress_seconds = ", "series_every = 1"}) {
     EXPECT_TRUE(contains(r.out, key)) << key;
   }
 
@@ -391,8 +437,7 @@ TEST(CliDryRun, AcceptsAnArrayOverride) {
 }
 
 TEST(CliDryRun, LastSetOfAKeyWins) {
-  const CliStreams r =
-      run_cli_streams("run --dry-run --set hydro.cells=100 --set hydro.cells=200");
+  const CliStreams r = run_cli_streams("run --dry-run --set hydro.cells=100 --set hydro.cells=200");
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   const toml::table resolved = parse_toml(r.out, "dry-run output");
   EXPECT_EQ(resolved["hydro"]["cells"].value<std::int64_t>(), 200);
@@ -413,8 +458,8 @@ TEST(CliList, ListsTheScenesWithTheirDescriptions) {
   EXPECT_TRUE(scenes.count("single_mode"));
   for (const std::string& scene : scenes) {
     SCOPED_TRACE(scene);
-    const toml::table t = toml::parse_file(
-        (fs::path(GRANVV_SOURCE_DIR) / "cases" / (scene + ".toml")).string());
+    const toml::table t =
+        toml::parse_file((fs::path(GRANVV_SOURCE_DIR) / "cases" / (scene + ".toml")).string());
     const std::string description = t["case"]["description"].value_or(std::string());
     EXPECT_FALSE(description.empty());
     bool found = false;
@@ -432,8 +477,8 @@ class CliSmallRun : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     root_ = new fs::path(fresh_directory("small-run"));
-    result_ = new CliStreams(run_cli_streams(
-        "run single_mode --no-report --out " + q(dir()) + " " + kSmall, *root_));
+    result_ = new CliStreams(
+        run_cli_streams("run single_mode --no-report --out " + q(dir()) + " " + kSmall, *root_));
   }
   static void TearDownTestSuite() {
     const auto* suite = ::testing::UnitTest::GetInstance()->current_test_suite();
@@ -550,7 +595,9 @@ TEST_F(CliSmallRun, ResolvedCaseFileRunsAgain) {
   ASSERT_EQ(again.exit_code, 0) << describe(again);
   // Resolving the resolved case changes nothing (only the header comment differs).
   EXPECT_EQ(parse_toml(again.out, "re-resolved case"), parse_toml(written, "case.toml"))
-      << "--- case.toml ---\n" << written << "--- resolved again ---\n" << again.out;
+      << "--- case.toml ---\n"
+      << written << "--- resolved again ---\n"
+      << again.out;
 }
 
 TEST(CliQuiet, QuietRunWritesNothingOnStderr) {
@@ -569,8 +616,7 @@ TEST(CliQuiet, QuietRunWritesNothingOnStderr) {
 // 5. The report (the one test that runs scripts/report.py)
 // ---------------------------------------------------------------------------------------------
 std::vector<std::string> image_sources(const std::string& html) {
-  static const std::regex img(R"(<img\b[^>]*?\bsrc\s*=\s*["']([^"']*)["'])",
-                              std::regex::icase);
+  static const std::regex img(R"(<img\b[^>]*?\bsrc\s*=\s*["']([^"']*)["'])", std::regex::icase);
   std::vector<std::string> sources;
   for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator();
        ++it) {
@@ -618,8 +664,8 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
   fs::create_directories(no_cases);
   // With an empty scene catalog, the quickstart must still come from the binary itself.
   ::setenv("GRANVV_CASES_DIR", no_cases.c_str(), 1);
-  const CliStreams r = run_cli_streams(
-      "run --quiet --no-report --set hydro.cells=64 --out " + q(out), scratch.path);
+  const CliStreams r =
+      run_cli_streams("run --quiet --no-report --set hydro.cells=64 --out " + q(out), scratch.path);
   ::unsetenv("GRANVV_CASES_DIR");
   ASSERT_EQ(r.exit_code, 0) << describe(r);
 

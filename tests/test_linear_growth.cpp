@@ -76,7 +76,8 @@ TEST(LinearGrowth, ShearModeOfTransverseVelocity) {
     const double t0 = haff_time_scale(kPhysics);
     auto amplitude = [&](const LagrangianState& s) {
       double a = 0;
-      for (int j = 0; j < s.cells(); ++j) a += 2.0 * s.node_vy[j] * std::cos(kx * s.node_x[j]) / s.cells();
+      for (int j = 0; j < s.cells(); ++j)
+        a += 2.0 * s.node_vy[j] * std::cos(kx * s.node_x[j]) / s.cells();
       return a / std::sqrt(haff_temperature(s.t, t0));
     };
     const double s_end = collision_clock(states.back().t, t0);

@@ -95,7 +95,9 @@ TEST_F(SingleMode, SecondOrderConvergenceOnTheSmoothSolution) {
   EXPECT_LT(c.error_v.back(), 1e-7);
 }
 
-TEST_F(SingleMode, SeventyNineUnstableModes) { EXPECT_EQ(coarse_->unstable_modes, 79); }
+TEST_F(SingleMode, SeventyNineUnstableModes) {
+  EXPECT_EQ(coarse_->unstable_modes, 79);
+}
 
 }  // namespace
 }  // namespace granvv::app

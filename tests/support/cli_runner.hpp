@@ -24,8 +24,7 @@ struct CliStreams {
 
 // Like run_cli, but stdout and stderr are captured separately; with a non-empty working_dir the
 // binary runs there (`cd working_dir && granvv args`).
-CliStreams run_cli_streams(const std::string& args,
-                           const std::filesystem::path& working_dir = {});
+CliStreams run_cli_streams(const std::string& args, const std::filesystem::path& working_dir = {});
 // A string as one single-quoted shell word.
 std::string shell_quote(const std::string& s);
 
