@@ -281,15 +281,6 @@ Constraint name_like() {
   return c;
 }
 
-namespace {
-
-// Bounds print as plain numbers: 0, 0.5, 1e+06 -> 1e6.
-std::string bound(double x) {
-  std::string s = format_real(x);
-  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
-  return s;
-}
-
 std::string join(const std::vector<std::string>& items, std::string_view sep) {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) {
@@ -297,6 +288,15 @@ std::string join(const std::vector<std::string>& items, std::string_view sep) {
     out += items[i];
   }
   return out;
+}
+
+namespace {
+
+// Bounds print as plain numbers: 0, 0.5, 1e+06 -> 1e6.
+std::string bound(double x) {
+  std::string s = format_real(x);
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+  return s;
 }
 
 // The numeric / choice part, without the array decorations.

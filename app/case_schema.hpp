@@ -109,6 +109,7 @@ std::optional<std::string> closest_match(std::string_view wrong,
 
 // Value in TOML syntax: 0.0004, 1e6, 2000, true, "single_mode", [1.0, 2.5].
 std::string format_value(const Value& value);
+std::string join(const std::vector<std::string>& items, std::string_view sep);
 std::string format_real(double x);            // shortest round-trip TOML float
 std::string toml_quoted(std::string_view s);  // TOML basic string with escapes
 

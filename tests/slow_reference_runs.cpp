@@ -16,10 +16,9 @@ namespace {
 HydroOutcome run_single_mode(const std::vector<std::string>& sets) {
   auto all = sets;
   all.push_back("convergence.cells=[]");
-  return run_hydro_scene(
-      hydro_scene_from(CaseConfig::from_file(
-          std::string(GRANVV_SOURCE_DIR) + "/cases/single_mode.toml", all)),
-      {});
+  return run_hydro_scene(hydro_scene_from(CaseConfig::from_file(
+                             std::string(GRANVV_SOURCE_DIR) + "/cases/single_mode.toml", all)),
+                         {});
 }
 
 // The mesh test (2000 vs 4000 cells) cannot see a time-step error common to both meshes; this
@@ -31,9 +30,9 @@ TEST(SlowReference, DefaultStepsMatchTightStepsWithin1e4) {
   ASSERT_TRUE(normal.blowup_time && tight.blowup_time);
   EXPECT_LT(std::abs(*normal.blowup_time / *tight.blowup_time - 1.0), 1e-4);
   for (double level : {10.0, 100.0, 1000.0, 1e6}) {
-    EXPECT_LT(std::abs(normal.run.crossing_times.at(level) / tight.run.crossing_times.at(level) -
-                       1.0),
-              1e-4)
+    EXPECT_LT(
+        std::abs(normal.run.crossing_times.at(level) / tight.run.crossing_times.at(level) - 1.0),
+        1e-4)
         << "crossing of n = " << level;
   }
   EXPECT_GT(tight.run.steps, 20 * normal.run.steps);

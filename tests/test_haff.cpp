@@ -9,24 +9,13 @@
 #include <limits>
 
 #include "hydro/haff.hpp"
+#include "support/runge_kutta.hpp"
 
 namespace {
 
 using granvv::hydro::Physics;
 
-// Classical RK4 for a scalar ODE y' = f(t, y) over [t0, t1] with n steps.
-double rk4(const std::function<double(double, double)>& f, double y, double t0, double t1, int n) {
-  const double h = (t1 - t0) / n;
-  for (int i = 0; i < n; ++i) {
-    const double t = t0 + i * h;
-    const double k1 = f(t, y);
-    const double k2 = f(t + h / 2, y + h / 2 * k1);
-    const double k3 = f(t + h / 2, y + h / 2 * k2);
-    const double k4 = f(t + h, y + h * k3);
-    y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-  }
-  return y;
-}
+using granvv::testing::rk4;
 
 TEST(Haff, TimeScaleAndCoolingCoefficientOfThePaperScene) {
   const Physics paper{4e-4, 0.01};

@@ -13,6 +13,7 @@
 
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
+#include "support/runge_kutta.hpp"
 
 namespace {
 
@@ -312,21 +313,6 @@ TEST(LinearStability, ShearRateAndCutoff) {
                    2.0 * granvv::hydro::clustering_cutoff_mode(p));
 }
 
-// Classical RK4 for y' = A y (complex 3-vectors) with n steps over [0, s].
-Vec rk4_linear(const std::function<Vec(double, const Vec&)>& f, Vec y, double t0, double t1,
-               int n) {
-  const double h = (t1 - t0) / n;
-  for (int i = 0; i < n; ++i) {
-    const double t = t0 + i * h;
-    const Vec k1 = f(t, y);
-    const Vec k2 = f(t + h / 2, y + h / 2 * k1);
-    const Vec k3 = f(t + h / 2, y + h / 2 * k2);
-    const Vec k4 = f(t + h, y + h * k3);
-    y += h / 6 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return y;
-}
-
 TEST(LinearStability, EvolutionMatchesRungeKuttaInTheCollisionClock) {
   // RK4 with h ||A|| <= 2e-3: global error ~ (h ||A||)^4 ||A|| s / 120 < 1e-11 relative.
   const Vec initial(cd(1e-3, 0.0), cd(-2e-3, 5e-4), cd(0.0, 7e-4));
@@ -335,8 +321,8 @@ TEST(LinearStability, EvolutionMatchesRungeKuttaInTheCollisionClock) {
       const Eigen::Matrix3cd A = granvv::hydro::hcs_linear_operator(p, k);
       for (const double s : {0.002, 0.03}) {
         const int n = static_cast<int>(std::ceil(s * A.norm() / 2e-3));
-        const Vec reference =
-            rk4_linear([&](double, const Vec& y) -> Vec { return A * y; }, initial, 0.0, s, n);
+        const Vec reference = granvv::testing::rk4<Vec>(
+            [&](double, const Vec& y) -> Vec { return A * y; }, initial, 0.0, s, n);
         const Vec evolved = granvv::hydro::hcs_linear_evolution(p, k, initial, s);
         EXPECT_LT((evolved - reference).norm(), 1e-10 * reference.norm())
             << "K=" << p.K << " k=" << k << " s=" << s;
@@ -369,7 +355,7 @@ TEST(LinearStability, EigenmodesGrowAlgebraicallyInPhysicalTime) {
     for (const auto& mode : granvv::hydro::hcs_modes(p, k)) {
       const double t = 2.0 * t0;
       const int steps = static_cast<int>(2000.0 * std::max(1.0, kx * t0) * t / t0);
-      Vec y = rk4_linear(rhs, mode.eigenvector, 0.0, t, steps);  // u = w at t = 0
+      Vec y = granvv::testing::rk4<Vec>(rhs, mode.eigenvector, 0.0, t, steps);  // u = w at t = 0
       y(1) /= std::sqrt(granvv::hydro::haff_temperature(t, t0));
       const cd factor = std::pow(cd(1.0 + t / t0), mode.rate * t0);
       EXPECT_LT((y - factor * mode.eigenvector).norm(), 1e-9 * std::abs(factor))
