@@ -94,7 +94,7 @@ int run_command(const RunOptions& options) {
       {"compare", nullptr}};
   int exit_code = 0;
   try {
-    auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);
+    auto last = std::chrono::steady_clock::now();  // first line after progress_seconds
     auto progress = [&](const hydro::Progress& p) {
       const auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - last).count() < scene.progress_seconds) return;

@@ -84,12 +84,14 @@ RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl&
       break;
     }
     limit = time_step_limit(s, control.time_step);
-    double dt = std::min(limit.dt, heating_limit);
+    if (heating_limit < limit.dt) limit = {heating_limit, "heating"};
+    double dt = limit.dt;
     bool clamped = false;
     const double target = next_output < outputs.size() ? outputs[next_output] : control.t_end;
     if (s.t + dt >= target * (1.0 - 1e-14)) {
       dt = target - s.t;
       clamped = true;
+      limit.limited_by = "output time";
     }
 
     StepOutcome step;

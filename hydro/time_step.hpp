@@ -19,7 +19,8 @@ struct TimeStepControl {
 
 struct TimeStepLimit {
   double dt = 0.0;
-  std::string limited_by;  // "sound", "compression", "dt_max"
+  std::string
+      limited_by;  // "sound", "compression", "dt_max" (the driver adds "heating", "output time")
 };
 
 TimeStepLimit time_step_limit(const LagrangianState& s, const TimeStepControl& control);
