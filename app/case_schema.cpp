@@ -101,6 +101,35 @@ const std::vector<KeySpec>& case_schema() {
       {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
       {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
        "Courant number of the study; its step is also capped at cfl/cells, so dt ~ h"},
+
+      // [md]: the particle engine (LAMMPS, 2D inelastic disks; sigma = m = T0 = 1, times in
+      // sigma sqrt(m/T0)). The scene is given either in particle terms (md.particles > 0) or
+      // by physics.K through the scaled mapping (md.particles = 0), DESIGN.md §4.
+      {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
+      {"md.particles", kInteger, 0, at_least(0),
+       "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
+      {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
+      {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
+      {"md.restitution", kReal, 0.0, closed_closed(0, 1),
+       "coefficient of normal restitution r; 0 = 1 - 2 physics.q"},
+      {"md.seed", kInteger, 1, at_least(0),
+       "seed of the particle sample (ensemble member m: seed + m)"},
+      {"md.ensemble", kInteger, 1, at_least(1), "number of independent seeds"},
+      {"md.t_end", kReal, 100.0, positive(), "end time in MD units"},
+      {"md.output_times", kReals, kEmpty, increasing(non_negative()),
+       "snapshot times of the coarse-grained fields, MD units"},
+      {"md.sample_interval", kReal, 1.0, positive(), "time between time-series samples, MD units"},
+      {"md.bins", kInteger, 100, at_least(1), "coarse-graining bins along x"},
+      {"md.kernel", kString, "bin", one_of({"bin", "gaussian", "lucy"}), "coarse-graining kernel"},
+      {"md.kernel_width", kReal, 0.0, non_negative(),
+       "kernel width in sigma (gaussian, lucy); 0 for bins"},
+      {"md.max_overlap", kReal, 0.01, open_closed(0, 0.1),
+       "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
+      {"md.steps_per_contact", kInteger, 30, at_least(10), "time steps per contact duration"},
+      {"md.adaptive_stiffness", kBoolean, true, any_value(),
+       "lower kn and raise dt as the gas cools, restitution fixed"},
+      {"md.snapshot_interval", kReal, 0.0, non_negative(),
+       "H5MD particle snapshots every this much MD time; 0 = none"},
   };
   return rows;
 }
@@ -139,27 +168,40 @@ CrossCheck strictly_less(std::string lo_key, std::string hi_key) {
   return check;
 }
 
-CrossCheck output_times_within_run() {
+// Every element of the array times_key <= end_key (both in the same table's units).
+CrossCheck times_within_run(std::string times_key, std::string end_key) {
   CrossCheck check;
-  check.rule = "every hydro.output_times <= hydro.t_end";
-  check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
-    const double t_end = c.real("hydro.t_end");
-    const std::vector<double> times = c.reals("hydro.output_times");
+  check.rule = "every " + times_key + " <= " + end_key;
+  check.check = [times_key, end_key](const CaseConfig& c) -> std::optional<CrossViolation> {
+    const double t_end = c.real(end_key);
+    const std::vector<double> times = c.reals(times_key);
     if (times.empty() || times.back() <= t_end) return std::nullopt;  // times are increasing
-    if (origin_rank(c, "hydro.t_end") > origin_rank(c, "hydro.output_times")) {
-      return CrossViolation{"hydro.t_end", "must be >= every hydro.output_times, the last being " +
-                                               format_real(times.back()) + " " +
-                                               from(c, "hydro.output_times")};
+    if (origin_rank(c, end_key) > origin_rank(c, times_key)) {
+      return CrossViolation{end_key, "must be >= every " + times_key + ", the last being " +
+                                         format_real(times.back()) + " " + from(c, times_key)};
     }
     for (std::size_t i = 0; i < times.size(); ++i) {
       if (times[i] > t_end) {
-        return CrossViolation{"hydro.output_times",
-                              "every element must be <= hydro.t_end = " + format_real(t_end) + " " +
-                                  from(c, "hydro.t_end") + ", but element " +
-                                  std::to_string(i + 1) + " is " + format_real(times[i])};
+        return CrossViolation{times_key, "every element must be <= " + end_key + " = " +
+                                             format_real(t_end) + " " + from(c, end_key) +
+                                             ", but element " + std::to_string(i + 1) + " is " +
+                                             format_real(times[i])};
       }
     }
     return std::nullopt;
+  };
+  return check;
+}
+
+// A smooth coarse-graining kernel needs a width.
+CrossCheck smooth_kernel_has_width() {
+  CrossCheck check;
+  check.rule = "md.kernel_width > 0 when md.kernel is gaussian or lucy";
+  check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
+    if (c.string("md.kernel") == "bin" || c.real("md.kernel_width") > 0.0) return std::nullopt;
+    return CrossViolation{"md.kernel_width", "must be > 0 (sigma) for md.kernel = \"" +
+                                                 c.string("md.kernel") + "\" " +
+                                                 from(c, "md.kernel")};
   };
   return check;
 }
@@ -168,7 +210,9 @@ CrossCheck output_times_within_run() {
 
 const std::vector<CrossCheck>& case_cross_checks() {
   static const std::vector<CrossCheck> rows = {
-      output_times_within_run(),
+      times_within_run("hydro.output_times", "hydro.t_end"),
+      times_within_run("md.output_times", "md.t_end"),
+      smooth_kernel_has_width(),
       strictly_less("analysis.tau_fit_min_density", "analysis.tau_fit_max_density"),
       strictly_less("analysis.profile_fit_x_min", "analysis.profile_fit_x_max"),
       // convergence.cells (strictly increasing, each >= 4) is a per-key constraint above.

@@ -1,6 +1,8 @@
 #include "app/run_command.hpp"
 
+#include <mpi.h>
 #include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/null_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -14,6 +16,9 @@
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/md_output.hpp"
+#include "app/md_scene.hpp"
+#include "md_bridge/lammps_session.hpp"
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
@@ -54,16 +59,45 @@ double progress_fraction(const hydro::Progress& p) {
   return std::clamp(std::max(by_time, by_density), 1e-9, 1.0);
 }
 
+// The particle engine with a progress line every progress_seconds and its throughput.
+MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::logger& log) {
+  const auto& sc = scene.spec.scene;
+  log.info("md: {} disks, Lx = {:.6g}, Ly = {:.6g} sigma, phi = {:.4g}, r = {:.6g} (K = {:.4g}, "
+           "q = {:.4g}, {} unstable modes), ensemble of {}",
+           sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution,
+           sc.physics().K, sc.physics().q, sc.unstable_modes(), scene.ensemble);
+  auto last = std::chrono::steady_clock::now();
+  const MdOutcome out = run_md_scene(scene, [&](int member, const md::MdProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
+    last = now;
+    const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
+    log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} atom-steps/s ETA {:.1f} s",
+             member + 1, scene.ensemble, p.t, p.T, p.steps,
+             p.steps * double(sc.particles) / std::max(p.wall_seconds, 1e-12),
+             p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
+  });
+  log.info("md: restitution measured in LAMMPS {:.6f} (target {:.6f})", out.restitution_measured,
+           sc.restitution);
+  log.info("md: {:.3g} s wall, {:.3g} atom-steps/s, Haff t0 = {:.5g} +- {:.2g} (kinetic theory "
+           "{:.5g} with chi(phi), {:.5g} dilute)",
+           out.wall_seconds, out.atom_steps / out.wall_seconds, out.haff.t0, out.haff.t0_error,
+           out.haff_t0_theory, out.haff_t0_theory_dilute);
+  return out;
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
   // 1. Everything that can be wrong with the input is found before anything is written.
   std::optional<CaseConfig> loaded;
   HydroScene scene;
+  std::optional<MdScene> md_scene;
   try {
     const CaseSource source = locate_case(options.case_name);
     loaded = CaseConfig::from_string(source.text, source.origin, options.sets);
     scene = hydro_scene_from(*loaded);
+    md_scene = md_scene_from(*loaded, scene);
   } catch (const ConfigError& e) {
     std::cerr << "granvv: error: " << e.what() << "\n";
     return 2;
@@ -74,19 +108,29 @@ int run_command(const RunOptions& options) {
     return 0;
   }
 
+  // Under mpirun every rank runs the scene (the particle engine is collective); rank 0 alone
+  // writes the outputs and the log.
+  int rank = 0;
+  if (md_scene) {
+    md::MpiEnvironment::ensure();
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  }
+  const bool writer = rank == 0;
   const fs::path dir =
       options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
   std::error_code ec;
-  fs::create_directories(dir, ec);
+  if (writer) fs::create_directories(dir, ec);
   if (ec) {
     std::cerr << "granvv: error: cannot create output folder " << dir << ": " << ec.message()
               << "\n";
     return 1;
   }
-  auto log = make_logger(dir / "run.log", options.quiet);
+  auto log = writer ? make_logger(dir / "run.log", options.quiet)
+                    : std::make_shared<spdlog::logger>(
+                          "granvv", std::make_shared<spdlog::sinks::null_sink_mt>());
   log->info("granvv {} running case '{}' into {}", GRANVV_VERSION, config.name(), dir.string());
   log->info("resolved configuration:\n{}", config.resolved_toml());
-  write_file_atomically(dir / "case.toml", config.resolved_toml());
+  if (writer) write_file_atomically(dir / "case.toml", config.resolved_toml());
 
   nlohmann::json summary = {
       {"case", config.name()},      {"status", "failed"}, {"granvv_version", GRANVV_VERSION},
@@ -115,19 +159,28 @@ int run_command(const RunOptions& options) {
                 outcome.singularity->tau, outcome.singularity->n_min, outcome.singularity->n_max);
     }
     RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
-    write_results_file(dir / "results.h5", meta, scene, outcome);
+    if (writer) write_results_file(dir / "results.h5", meta, scene, outcome);
     summary["hydro"] = hydro_summary(scene, outcome);
     summary["status"] = hydro::to_string(run.status);
     if (run.status == hydro::RunStatus::failed) {
       log->error("hydro run failed: {}", run.stop_reason);
       exit_code = 1;
     }
+    if (md_scene) {
+      summary["md"] = {{"status", "failed"}};
+      const MdOutcome md = run_particles(*md_scene, scene.progress_seconds, *log);
+      if (writer) write_md_results(dir / "results.h5", *md_scene, md);
+      summary["md"] = md_summary(*md_scene, md);
+      if (summary["status"] == "ok") summary["status"] = md.runs.back().status;
+    }
   } catch (const std::exception& e) {
     log->error("run failed: {}", e.what());
     summary["status"] = "failed";
     summary["error"] = e.what();
+    if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     exit_code = 1;
   }
+  if (!writer) return exit_code;
   write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
   log->info("wrote {}", (dir / "summary.json").string());
 

@@ -1,0 +1,168 @@
+#include "app/md_output.hpp"
+
+#include <H5Cpp.h>
+
+#include <cmath>
+
+namespace granvv::app {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
+  const hsize_t dims[1] = {v.size()};
+  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));
+  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void write_matrix(H5::Group& g, const std::string& name, const std::vector<double>& v,
+                  hsize_t rows) {
+  const hsize_t dims[2] = {rows, rows ? v.size() / rows : 0};
+  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
+  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void attribute(H5::Group& g, const std::string& name, double value) {
+  g.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR))
+      .write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+// Mean and standard error over ensemble members of one field of every snapshot.
+void ensemble_field(const MdOutcome& out, const std::string& name,
+                    std::vector<double> md::FieldProfile::*field, H5::Group& g) {
+  const auto& first = out.runs.front().snapshots;
+  std::vector<double> mean, err;
+  for (size_t s = 0; s < first.size(); ++s) {
+    const size_t bins = (first[s].fields.*field).size();
+    for (size_t b = 0; b < bins; ++b) {
+      double sum = 0, sum2 = 0;
+      int k = 0;
+      for (const auto& run : out.runs) {
+        if (s >= run.snapshots.size()) continue;
+        const double x = (run.snapshots[s].fields.*field)[b];
+        if (!std::isfinite(x)) continue;
+        sum += x, sum2 += x * x, ++k;
+      }
+      const double m = k ? sum / k : std::nan("");
+      mean.push_back(m);
+      err.push_back(k > 1 ? std::sqrt(std::max(0.0, sum2 / k - m * m) / (k - 1)) : std::nan(""));
+    }
+  }
+  write_matrix(g, name, mean, first.size());
+  write_matrix(g, name + "_stderr", err, first.size());
+}
+
+}  // namespace
+
+json md_summary(const MdScene& scene, const MdOutcome& out) {
+  const auto& sc = scene.spec.scene;
+  const auto physics = sc.physics();
+  long long steps = 0;
+  int changes = 0;
+  for (const auto& run : out.runs) steps += run.steps, changes += run.stiffness_changes;
+  json snaps = json::array();
+  for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
+  const auto& c0 = out.runs.front().initial_contact;
+  const auto& c1 = out.runs.front().final_contact;
+  return {
+      {"status", out.runs.back().status},
+      {"wall_seconds", out.wall_seconds},
+      {"particles", sc.particles},
+      {"box_length", sc.box_length},
+      {"box_width", sc.box_width},
+      {"area_fraction", sc.area_fraction},
+      {"restitution", sc.restitution},
+      {"restitution_measured", out.restitution_measured},
+      {"K", physics.K},
+      {"q", physics.q},
+      {"unstable_modes", sc.unstable_modes()},
+      {"shear_unstable_modes", sc.shear_unstable_modes()},
+      {"ensemble", scene.ensemble},
+      {"seed", scene.spec.seed},
+      {"t_end", scene.spec.t_end},
+      {"steps", steps},
+      {"atom_steps", out.atom_steps},
+      {"atom_steps_per_second", number_or_null(out.atom_steps / out.wall_seconds)},
+      {"stiffness_changes", changes},
+      {"contact_initial", {{"kn", c0.kn}, {"gamma_n", c0.gamma_n}, {"dt", c0.dt}}},
+      {"contact_final", {{"kn", c1.kn}, {"gamma_n", c1.gamma_n}, {"dt", c1.dt}}},
+      {"haff_t0_measured", number_or_null(out.haff.t0)},
+      {"haff_t0_measured_error", number_or_null(out.haff.t0_error)},
+      {"haff_T0_measured", number_or_null(out.haff.T0)},
+      {"haff_fit_window", {out.haff.t_min, out.haff.t_max}},
+      {"haff_t0_theory", out.haff_t0_theory},
+      {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
+      {"haff_t0_deviation", out.haff.t0 / out.haff_t0_theory - 1.0},
+      {"haff_t0_deviation_dilute", out.haff.t0 / out.haff_t0_theory_dilute - 1.0},
+      {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
+      {"snapshot_times", snaps},
+  };
+}
+
+void write_md_results(const std::filesystem::path& file, const MdScene& scene,
+                      const MdOutcome& out) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
+  H5::Group md = h5.createGroup("/md");
+  const auto& sc = scene.spec.scene;
+  attribute(md, "particles", double(sc.particles));
+  attribute(md, "box_length", sc.box_length);
+  attribute(md, "box_width", sc.box_width);
+  attribute(md, "area_fraction", sc.area_fraction);
+  attribute(md, "restitution", sc.restitution);
+  attribute(md, "restitution_measured", out.restitution_measured);
+  attribute(md, "haff_t0_measured", out.haff.t0);
+  attribute(md, "haff_t0_measured_error", out.haff.t0_error);
+  attribute(md, "haff_T0_measured", out.haff.T0);
+  attribute(md, "haff_t0_theory", out.haff_t0_theory);
+  attribute(md, "haff_t0_theory_dilute", out.haff_t0_theory_dilute);
+
+  H5::Group ts = h5.createGroup("/md/timeseries");
+  const auto& base = out.runs.front().series;
+  write_vector(ts, "t", base.t);
+  write_vector(ts, "T_mean", out.T_mean);
+  write_vector(ts, "T_stderr", out.T_stderr);
+  const hsize_t members = out.runs.size();
+  auto stack = [&](std::vector<double> md::MdSeries::*member) {
+    std::vector<double> all;
+    for (const auto& run : out.runs) {
+      auto v = run.series.*member;
+      v.resize(base.t.size(), std::nan(""));
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    return all;
+  };
+  write_matrix(ts, "T", stack(&md::MdSeries::T), members);
+  write_matrix(ts, "energy_thermal", stack(&md::MdSeries::energy_thermal), members);
+  write_matrix(ts, "energy_kinetic_x", stack(&md::MdSeries::energy_kinetic_x), members);
+  write_matrix(ts, "energy_kinetic_y", stack(&md::MdSeries::energy_kinetic_y), members);
+  write_matrix(ts, "energy_total", stack(&md::MdSeries::energy_total), members);
+  write_matrix(ts, "momentum_x", stack(&md::MdSeries::momentum_x), members);
+  write_matrix(ts, "kn", stack(&md::MdSeries::kn), members);
+  write_matrix(ts, "dt", stack(&md::MdSeries::dt), members);
+  std::vector<double> fit, chi, dilute;
+  for (double t : base.t) {
+    fit.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff.t0, 2));
+    chi.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff_t0_theory, 2));
+    dilute.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff_t0_theory_dilute, 2));
+  }
+  write_vector(ts, "haff_fit", fit);
+  write_vector(ts, "haff_theory", chi);
+  write_vector(ts, "haff_theory_dilute", dilute);
+
+  H5::Group fields = h5.createGroup("/md/fields");
+  std::vector<double> times;
+  for (const auto& s : out.runs.front().snapshots) times.push_back(s.t);
+  write_vector(fields, "t", times);
+  if (!times.empty()) {
+    write_vector(fields, "x", out.runs.front().snapshots.front().fields.x);
+    ensemble_field(out, "n", &md::FieldProfile::n, fields);
+    ensemble_field(out, "v_x", &md::FieldProfile::v_x, fields);
+    ensemble_field(out, "v_y", &md::FieldProfile::v_y, fields);
+    ensemble_field(out, "T", &md::FieldProfile::T, fields);
+  }
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,20 @@
+#pragma once
+// The particle engine's outputs: the `md` block of summary.json (keys fixed by the
+// particle-engine issue; times in MD units sigma sqrt(m/T0)) and the /md group of results.h5.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "app/md_scene.hpp"
+
+namespace granvv::app {
+
+nlohmann::json md_summary(const MdScene& scene, const MdOutcome& outcome);
+
+// Adds /md to an existing results.h5: /md/timeseries (run 0's sample times, each member's
+// T and energies as [members x samples], the ensemble mean and standard error of T, Haff's
+// law with the fitted and both theoretical t0), /md/fields (the FieldSeries: snapshot times x
+// bins, ensemble mean and standard error of n, v_x, v_y, T), scene attributes.
+void write_md_results(const std::filesystem::path& file, const MdScene& scene,
+                      const MdOutcome& outcome);
+
+}  // namespace granvv::app

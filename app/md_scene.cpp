@@ -1,0 +1,110 @@
+#include "app/md_scene.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "md_bridge/particle_sampler.hpp"
+#include "md_bridge/restitution_calibration.hpp"
+
+namespace granvv::app {
+
+std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
+  if (!c.boolean("md.enabled")) return std::nullopt;
+  MdScene s;
+  auto& spec = s.spec;
+  const double r_key = c.real("md.restitution");
+  const double r = r_key > 0.0 ? r_key : 1.0 - 2.0 * hydro.physics.q;
+  const double phi = c.real("md.area_fraction"), ly = c.real("md.box_width");
+  const long long n = c.integer("md.particles");
+  spec.scene = n > 0 ? md::scene_from_particles(n, phi, ly, r)
+                     : md::scene_from_scaled(hydro.physics.K, 0.5 * (1.0 - r), phi, ly);
+  const std::string problem = md::scene_problem(spec.scene);
+  if (!problem.empty()) {
+    throw ConfigError(c.origin("md.particles") + ": impossible particle scene: " + problem);
+  }
+  spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
+  spec.seed = static_cast<std::uint64_t>(c.integer("md.seed"));
+  spec.t_end = c.real("md.t_end");
+  spec.sample_interval = c.real("md.sample_interval");
+  spec.output_times = c.reals("md.output_times");
+  spec.bins = static_cast<int>(c.integer("md.bins"));
+  spec.kernel = c.string("md.kernel");
+  spec.kernel_width = c.real("md.kernel_width");
+  spec.max_overlap = c.real("md.max_overlap");
+  spec.steps_per_contact = static_cast<int>(c.integer("md.steps_per_contact"));
+  spec.adaptive_stiffness = c.boolean("md.adaptive_stiffness");
+  s.ensemble = static_cast<int>(c.integer("md.ensemble"));
+  if (spec.sample_interval > spec.t_end) {
+    throw ConfigError(c.origin("md.sample_interval") + ": md.sample_interval = " +
+                      format_real(spec.sample_interval) + ": must be <= md.t_end = " +
+                      format_real(spec.t_end));
+  }
+  // What the coarse-grainer and the sampler would refuse, refused here with the key named.
+  try {
+    md::CoarseGrainer check({-0.5 * spec.scene.box_length, spec.scene.box_length, 0.0,
+                             spec.scene.box_width, spec.bins, spec.kernel, spec.kernel_width});
+    (void)check;
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.kernel_width") + ": md.kernel_width = " +
+                      format_real(spec.kernel_width) + ": " + e.what());
+  }
+  if (spec.scene.particles > 2'000'000) {
+    throw ConfigError(c.origin("md.particles") + ": the scene needs " +
+                      std::to_string(spec.scene.particles) +
+                      " disks; above 2e6 a single-node run here takes too long (use MPI on a "
+                      "cluster, or a larger K / smaller md.box_width)");
+  }
+  return s;
+}
+
+MdOutcome run_md_scene(const MdScene& scene,
+                       const std::function<void(int, const md::MdProgress&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  MdOutcome out;
+  const auto& sc = scene.spec.scene;
+  // The restitution the contact model really gives, measured in LAMMPS (binary collisions).
+  md::ContactSpec contact;
+  contact.restitution = sc.restitution;
+  contact.max_overlap = scene.spec.max_overlap;
+  contact.steps_per_contact = scene.spec.steps_per_contact;
+  const md::ContactModel model = md::make_contact_model(contact);
+  out.restitution_measured = md::measure_restitution(model, 1.0);
+  if (std::abs(out.restitution_measured - sc.restitution) > 1e-3) {
+    std::ostringstream why;
+    why << "restitution measured in LAMMPS " << out.restitution_measured << " misses md.restitution = "
+        << sc.restitution << " by more than 1e-3; refusing the run";
+    throw std::runtime_error(why.str());
+  }
+  std::vector<std::vector<double>> ts, Ts;
+  for (int m = 0; m < scene.ensemble; ++m) {
+    md::MdRunSpec spec = scene.spec;
+    spec.seed += static_cast<std::uint64_t>(m);
+    out.runs.push_back(md::run_md(spec, [&](const md::MdProgress& p) {
+      if (progress) progress(m, p);
+    }));
+    out.atom_steps += out.runs.back().atom_steps;
+    ts.push_back(out.runs.back().series.t);
+    Ts.push_back(out.runs.back().series.T);
+  }
+  out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, scene.spec.t_end);
+  out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
+  out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
+  const size_t samples = out.runs.front().series.T.size();
+  for (size_t i = 0; i < samples; ++i) {
+    double sum = 0, sum2 = 0;
+    int k = 0;
+    for (const auto& run : out.runs) {
+      if (i >= run.series.T.size()) continue;
+      sum += run.series.T[i], sum2 += run.series.T[i] * run.series.T[i], ++k;
+    }
+    const double mean = sum / k;
+    out.T_mean.push_back(mean);
+    out.T_stderr.push_back(k > 1 ? std::sqrt(std::max(0.0, (sum2 / k - mean * mean)) * k / (k - 1) / k)
+                                 : std::nan(""));
+  }
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace granvv::app

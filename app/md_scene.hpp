@@ -1,0 +1,40 @@
+#pragma once
+// A case's particle part: the [md] table read into a particle scene (DESIGN.md §4), the
+// restitution check inside LAMMPS, an ensemble of seeds, and the Haff fit against kinetic
+// theory (dilute and with the Enskog factor).
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "app/case_config.hpp"
+#include "app/hydro_scene.hpp"
+#include "compare/haff_fit.hpp"
+#include "md_bridge/md_run.hpp"
+
+namespace granvv::app {
+
+struct MdScene {
+  md::MdRunSpec spec;  // spec.seed is the first seed; member m uses seed + m
+  int ensemble = 1;
+};
+
+// Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot
+// run (scene_problem, contact model, a profile too dense to place) before LAMMPS sees them.
+std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
+
+struct MdOutcome {
+  std::vector<md::MdRunResult> runs;
+  double restitution_measured = 0.0;
+  compare::HaffFit haff;
+  double haff_t0_theory = 0.0, haff_t0_theory_dilute = 0.0;
+  double wall_seconds = 0.0, atom_steps = 0.0;
+  // Ensemble mean and standard error of the temperature series (run 0's sample times).
+  std::vector<double> T_mean, T_stderr;
+};
+
+// Throws std::runtime_error if the restitution measured in LAMMPS misses the target by more
+// than 1e-3 (the run is refused).
+MdOutcome run_md_scene(const MdScene& scene,
+                       const std::function<void(int member, const md::MdProgress&)>& progress);
+
+}  // namespace granvv::app

@@ -1,0 +1,154 @@
+#pragma once
+// Coarse-graining of 2D particles into 1D fields along x, averaged over y: geometry (a
+// periodic grid of equal cells) x kernel (top-hat bins, Gaussian, Lucy) x fields (n, v_x, v_y,
+// T), after MercuryCG (Weinhart, Thornton, Luding & Bokhove, Granular Matter 14, 289 (2012);
+// Tunuguntla, Thornton & Weinhart, Comp. Part. Mech. 3, 343 (2016)).
+//
+// Two stages, so that it runs in place under MPI (DESIGN.md §8): every rank sums raw kernel
+// moments of its own particles into a Moments (accumulate), the ranks add them
+// (md_bridge/moment_reduction.hpp: allreduce), and fields() turns the summed moments into
+// n, v, T with their standard errors. Only sums cross ranks, never particles.
+//
+// Units are those of the particles (MD: sigma = m = T0 = 1); masses may differ per particle.
+// Conventions (2D, DESIGN.md §4 and §6):
+//   n(x)  number density, particles per unit area;
+//   v(x)  mass-weighted mean velocity, both components;
+//   T(x)  granular temperature = thermal energy per particle, (1/2) m <|c - v(x)|^2>, with the
+//         full local mean (v_x and v_y) removed, so that transverse (shear) flow is not counted
+//         as heat; each velocity component then has variance T/m (equipartition).
+#include <string>
+#include <vector>
+
+namespace granvv::md {
+
+// Geometry and kernel. Fields live at the bin centres x_lo + (i + 1/2) Lx/bins.
+//   kernel "bin":      top-hat over the cell (plain binning); width is ignored.
+//   kernel "gaussian": exp(-r^2 / 2 width^2), truncated at |r| = 3 width.
+//   kernel "lucy":     Lucy's quartic (1 + 3 s)(1 - s)^3, s = |r|/width, support |r| < width
+//                      (Lucy, Astron. J. 82, 1013 (1977), in its 1D normalisation 5/(4 width)).
+// Smooth kernels wrap periodically (every image within the support counts) and need a support
+// radius (3 width for the Gaussian, width for Lucy) above half a bin, so that every particle
+// reaches at least one bin centre.
+struct CoarseGrainGrid {
+  double x_lo = 0.0, Lx = 1.0;  // periodic in x: [x_lo, x_lo + Lx)
+  double y_lo = 0.0, Ly = 1.0;  // only Ly enters (the area of a bin is Ly Lx/bins)
+  int bins = 1;
+  std::string kernel = "bin";
+  double width = 0.0;  // Gaussian standard deviation or Lucy radius, in units of x
+
+  double bin_width() const { return Lx / bins; }
+};
+
+// Raw per-bin kernel sums over particles p. Each particle's weights w_p over the bins add up
+// to exactly 1 (discrete normalisation), so per-bin sums also add up to whole-box sums:
+//   weight       = sum w             (the particle count of the bin; N_b for plain bins)
+//   weight2      = sum w^2           (N_eff = weight^2 / weight2)
+//   mass         = sum w m
+//   mass_weight2 = sum w^2 m         (sampling variance of the mean velocity)
+//   px, py       = sum w m c_x, sum w m c_y
+//   mv2          = sum w m |c|^2     (twice the kinetic energy)
+// `particles` counts the particles accumulated (exact below 2^53). Moments of disjoint
+// particle sets add: that is the MPI reduction and the merging of chunks.
+struct Moments {
+  std::vector<double> weight, weight2, mass, mass_weight2, px, py, mv2;
+  double particles = 0.0;
+
+  Moments() = default;
+  explicit Moments(int bins);
+  int bins() const { return static_cast<int>(weight.size()); }
+  // Adds moments of another particle set on the same grid; throws std::invalid_argument if
+  // the bin counts differ.
+  Moments& operator+=(const Moments& other);
+  // The per-bin arrays in a fixed order (packing for the reduction).
+  std::vector<std::vector<double>*> arrays();
+  std::vector<const std::vector<double>*> arrays() const;
+};
+
+// One snapshot of the fields at the bin centres. Quantities that a bin cannot define are
+// quiet NaN: v where the bin holds no weight, T and every standard error where fewer than two
+// particles contribute (N_eff <= 1).
+// Standard errors are those of one snapshot, from the local T and N_eff, assuming independent
+// particles with Maxwellian (Gaussian) velocity fluctuations about v(x):
+//   v_x_stderr = v_y_stderr = sqrt(T sum w^2 m) / sum w m    (= sqrt(T / (m N_b)) for bins),
+//   T_stderr   = T / sqrt(N_eff - 1)                          (exact for bins: 2(N_b - 1)
+//                                                              degrees of freedom, chi^2).
+// n has none: its snapshot variance is set by the static structure factor of the gas, not by
+// the sample itself (Poisson only for an ideal gas); an ensemble over seeds measures it.
+struct FieldProfile {
+  std::vector<double> x;  // bin centres
+  std::vector<double> n;  // number density, particles per unit area
+  std::vector<double> v_x, v_y;
+  std::vector<double> T;      // granular temperature, unbiased (see CoarseGrainer::fields)
+  std::vector<double> count;  // sum of weights: particles of the bin (kernel-weighted)
+  std::vector<double> n_eff;  // effective count (sum w)^2 / sum w^2
+  std::vector<double> v_x_stderr, v_y_stderr, T_stderr;
+};
+
+// Whole-box energies and momentum from the summed moments.
+//   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because
+//   every particle's weights add up to one.
+//   kinetic_macro_x/y = sum_bins (1/2) M_b v_b^2 per component, with M_b the bin's mass
+//   (the integral of (1/2) m n v^2 dx Ly); the y part is the transverse (shear) flow, DESIGN.md
+//   §6.
+//   thermal_biased = sum_bins (1/2) sum_p w m |c - v_b|^2 = sum_bins T_b^biased count_b.
+//   Identity (exact algebra for every kernel, round-off in practice):
+//     thermal_biased + kinetic_macro_x + kinetic_macro_y = kinetic_total.
+//   thermal = sum_bins T_b count_b with the unbiased T. It exceeds thermal_biased by exactly
+//   macro_noise_x + macro_noise_y, where macro_noise = sum_bins (1/2) T_b sum w^2 m / sum w m
+//   is the expected energy that the sampling noise of each bin's mean velocity puts into the
+//   macroscopic kinetic energy (T_b/2 per bin and component for plain bins). Hence also
+//     thermal + (kinetic_macro_x - macro_noise_x) + (kinetic_macro_y - macro_noise_y)
+//       = kinetic_total
+//   to round-off, bins with N_eff <= 1 excluded from thermal and macro_noise (their
+//   fluctuation energy is zero). The noise floor matters when the signal is small (§8).
+struct BoxEnergies {
+  double particles = 0.0, mass = 0.0;
+  double momentum_x = 0.0, momentum_y = 0.0;
+  double kinetic_total = 0.0;
+  double kinetic_macro_x = 0.0, kinetic_macro_y = 0.0;
+  double thermal_biased = 0.0;
+  double thermal = 0.0;
+  double macro_noise_x = 0.0, macro_noise_y = 0.0;
+};
+
+class CoarseGrainer {
+ public:
+  // Throws std::invalid_argument (one line naming the value) on bins < 1, non-positive or
+  // non-finite Lx or Ly, an unknown kernel, or a smooth kernel whose width is not positive or
+  // whose support does not reach half a bin.
+  explicit CoarseGrainer(CoarseGrainGrid grid);
+
+  const CoarseGrainGrid& grid() const { return grid_; }
+  std::vector<double> bin_centres() const;
+
+  // Adds the moments of n particles to `m` (which must have grid().bins bins). LAMMPS layout:
+  // particle i has position x[stride i + 0..1] and velocity v[stride i + 0..1]; mass[i] is
+  // its mass (LAMMPS rmass), or mass == nullptr for unit mass. Positions outside the box (atoms
+  // between neighbour-list rebuilds, DESIGN.md §5) are wrapped periodically; y is not read.
+  // Throws std::invalid_argument on n < 0, stride < 2, a wrong-sized m, a non-finite position.
+  void accumulate(Moments& m, const double* x, const double* v, const double* mass, int n,
+                  int stride = 3) const;
+  Moments accumulate(const double* x, const double* v, const double* mass, int n,
+                     int stride = 3) const;
+
+  // Fields from summed moments. The temperature removes the local mass-weighted mean and is
+  // unbiased for independent particles with equipartition (each component of c_p has
+  // variance T/m_p about v): with u = w m,
+  //   E[sum u |c - v_b|^2] = 2 T (sum w - sum w^2 m / sum w m),
+  // so T_b = sum u |c - v_b|^2 / (2 (sum w - sum w^2 m / sum w m)). For equal masses the
+  // denominator is 2 W (1 - 1/N_eff), N_eff = W^2 / sum w^2; for plain bins it is 2 (N_b - 1),
+  // the Bessel correction, where the naive 1/(2 N_b) is low by the factor (N_b - 1)/N_b.
+  // The fluctuation sum is formed as mv2 - |p|^2 / mass: its relative round-off is about
+  // eps (1 + m |v|^2 / 2T), harmless unless the flow is 10^6 times the thermal speed.
+  FieldProfile fields(const Moments& m) const;
+  BoxEnergies energies(const Moments& m) const;
+
+ private:
+  enum class Kernel { bin, gaussian, lucy };
+  CoarseGrainGrid grid_;
+  Kernel kernel_ = Kernel::bin;
+  double dx_ = 1.0;
+  double support_ = 0.0;  // kernel support radius (0 for bins)
+};
+
+}  // namespace granvv::md
