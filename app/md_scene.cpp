@@ -1,5 +1,6 @@
 #include "app/md_scene.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -48,6 +49,14 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   } catch (const std::invalid_argument& e) {
     throw ConfigError(c.origin("md.kernel_width") + ": md.kernel_width = " +
                       format_real(spec.kernel_width) + ": " + e.what());
+  }
+  // The densest point of the initial profile must still take disks without overlap.
+  double n_max = 0.0;
+  for (int i = 0; i < 4096; ++i) n_max = std::max(n_max, spec.fields.n(-0.5 + (i + 0.5) / 4096));
+  if (n_max * spec.scene.area_fraction > 0.5) {
+    throw ConfigError(c.origin("md.area_fraction") + ": md.area_fraction = " +
+                      format_real(spec.scene.area_fraction) + ": the initial density peak n/n0 = " +
+                      format_real(n_max) + " would need a local area fraction above 0.5");
   }
   if (spec.scene.particles > 2'000'000) {
     throw ConfigError(c.origin("md.particles") + ": the scene needs " +

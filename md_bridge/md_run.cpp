@@ -106,7 +106,7 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   while (next_output < outputs.size() && outputs[next_output] <= 0.0) ++next_output;
   observe(!outputs.empty() && outputs.front() <= 0.0);
 
-  while (t < spec.t_end * (1 - 1e-12)) {
+  while (t < spec.t_end - 0.5 * contact.dt) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
     double target = std::min(spec.t_end, t + spec.sample_interval);
     bool snapshot = false;

@@ -1,0 +1,125 @@
+// The particle engine on small systems with the real LAMMPS library: conservation,
+// cooling against Haff's law, adaptive stiffness, and refusal of impossible scenes through
+// the real CLI (exit 2, nothing written).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "md_bridge/md_run.hpp"
+#include "support/cli_runner.hpp"
+
+namespace granvv::md {
+namespace {
+
+MdRunSpec small_cooling_gas(double t_end) {
+  MdRunSpec spec;
+  spec.scene = scene_from_particles(600, 0.05, 60.0, 0.9);
+  hydro::InitialParameters ip;
+  ip.type = "uniform";
+  spec.fields = hydro::make_initial_fields(ip, {});
+  spec.t_end = t_end;
+  spec.sample_interval = t_end / 10;
+  spec.bins = 10;
+  spec.output_times = {0.0, t_end};
+  return spec;
+}
+
+TEST(MdRun, SmallCoolingGasConservesMomentumAndParticlesAndCools) {
+  const MdRunResult r = run_md(small_cooling_gas(8.0), nullptr);
+  ASSERT_EQ(r.status, "ok");
+  const auto& s = r.series;
+  ASSERT_EQ(s.t.size(), 11u);
+  for (size_t i = 0; i < s.t.size(); ++i) {
+    // Momentum: pairwise forces; round-off ~1e-16 per force over 1e5 steps.
+    EXPECT_LT(std::abs(s.momentum_x[i]), 1e-9);
+    EXPECT_LT(std::abs(s.momentum_y[i]), 1e-9);
+    if (i > 0) {
+      EXPECT_LT(s.energy_total[i], s.energy_total[i - 1]);  // inelastic: E falls
+    }
+  }
+  // Haff with the Enskog factor: t0 = 86 here, T(8) / T(0) = 0.84. The sampled T(0) and the
+  // thermal noise of 600 disks (sqrt(2/N) = 6 %) limit the check to 10 %.
+  const double t0 = haff_time_md(small_cooling_gas(8.0).scene, enskog_chi(0.05));
+  const double haff = 1.0 / std::pow(1.0 + 8.0 / t0, 2);
+  EXPECT_NEAR(s.T.back() / s.T.front(), haff, 0.1 * haff);
+  // Coarse-grained snapshots: integral of n over the box is the number of disks.
+  ASSERT_EQ(r.snapshots.size(), 2u);
+  for (const auto& snap : r.snapshots) {
+    double total = 0.0;
+    const double bin_area = 60.0 * small_cooling_gas(8).scene.box_length / 10;
+    for (double n : snap.fields.n) total += n * bin_area;
+    EXPECT_NEAR(total, 600.0, 1e-9);
+  }
+  EXPECT_EQ(r.snapshots.front().t, 0.0);
+  EXPECT_NEAR(r.snapshots.back().t, 8.0, r.final_contact.dt);
+}
+
+TEST(MdRun, AdaptiveStiffnessSoftensAtFixedRestitution) {
+  // r = 0.5 cools fast (t0 = 22): by t = 15 T ~ 0.35, the fastest pair ~0.6 of its start.
+  MdRunSpec spec = small_cooling_gas(15.0);
+  spec.scene.restitution = 0.5;
+  spec.adapt_below = 0.7;
+  const MdRunResult r = run_md(spec, nullptr);
+  ASSERT_EQ(r.status, "ok");
+  EXPECT_GT(r.stiffness_changes, 0);
+  EXPECT_LT(r.final_contact.kn, r.initial_contact.kn);
+  EXPECT_GT(r.final_contact.dt, r.initial_contact.dt);
+  // kn ~ u^2, dt ~ 1/sqrt(kn), gamma_n ~ sqrt(kn): the discrete contact is the same map.
+  EXPECT_NEAR(r.final_contact.gamma_n * r.final_contact.dt,
+              r.initial_contact.gamma_n * r.initial_contact.dt, 1e-9);
+  EXPECT_LT(std::abs(r.series.momentum_x.back()), 1e-9);
+}
+
+TEST(MdCli, ImpossibleParticleScenesAreRefusedBeforeLammps) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--set md.area_fraction=0.6", "md.area_fraction = 0.6"},
+      {"--set md.box_width=2", "md.box_width = 2"},
+      {"--set md.restitution=1.2", "md.restitution = 1.2"},
+      {"--set md.kernel=gaussian", "md.kernel_width"},
+      {"--set md.steps_per_contact=3", "md.steps_per_contact = 3"},
+      {"--set md.area_fraction=0.45 --set initial.type=single_mode --set "
+       "initial.velocity_amplitude=0 --set initial.type=random_modes --set "
+       "initial.random_modes=2 --set initial.random_amplitude=0.5",
+       "local area fraction above 0.5"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const auto dir = granvv::testing::fresh_directory("md-bad") / "out";
+    const auto r = granvv::testing::run_cli("run md_haff " + args + " --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << args;
+  }
+}
+
+TEST(MdCli, SmallHaffSceneThroughTheCli) {
+  const auto dir = granvv::testing::fresh_directory("md-haff");
+  const auto r = granvv::testing::run_cli(
+      "run md_haff --quiet --no-report --set md.particles=600 --set md.box_width=97 "
+      "--set md.t_end=6 --set md.sample_interval=1 --set md.ensemble=2 --set md.seed=5 "
+      "--set md.restitution=0.8 --out " +
+      dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  const auto& md = s["md"];
+  EXPECT_EQ(md["status"], "ok");
+  EXPECT_EQ(md["particles"], 600);
+  EXPECT_EQ(md["ensemble"], 2);
+  EXPECT_EQ(md["seed"], 5);
+  EXPECT_DOUBLE_EQ(md["restitution"].get<double>(), 0.8);
+  EXPECT_NEAR(md["restitution_measured"].get<double>(), 0.8, 1e-3);
+  for (const char* key : {"wall_seconds", "box_length", "box_width", "area_fraction", "K", "q",
+                          "atom_steps_per_second", "haff_t0_measured", "haff_t0_measured_error",
+                          "haff_t0_theory", "haff_t0_theory_dilute"}) {
+    EXPECT_TRUE(md[key].is_number()) << key;
+  }
+  // q = (1 - r)/2 and the theory's t0 = 2 / (sqrt(pi) (1 - r^2) chi n0 sigma).
+  EXPECT_NEAR(md["q"].get<double>(), 0.1, 1e-12);
+  const double n0 = 4 * 0.05 / M_PI;
+  EXPECT_NEAR(md["haff_t0_theory_dilute"].get<double>(), 2 / (std::sqrt(M_PI) * 0.36 * n0), 1e-6);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace granvv::md
