@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <sstream>
 
@@ -36,6 +37,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   spec.steps_per_contact = static_cast<int>(c.integer("md.steps_per_contact"));
   spec.adaptive_stiffness = c.boolean("md.adaptive_stiffness");
   s.ensemble = static_cast<int>(c.integer("md.ensemble"));
+  spec.snapshot_interval = c.real("md.snapshot_interval");
   if (spec.sample_interval > spec.t_end) {
     throw ConfigError(c.origin("md.sample_interval") + ": md.sample_interval = " +
                       format_real(spec.sample_interval) + ": must be <= md.t_end = " +
@@ -89,6 +91,12 @@ MdOutcome run_md_scene(const MdScene& scene,
   for (int m = 0; m < scene.ensemble; ++m) {
     md::MdRunSpec spec = scene.spec;
     spec.seed += static_cast<std::uint64_t>(m);
+    if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
+      const std::filesystem::path p = spec.h5md_path;
+      spec.h5md_path = (p.parent_path() / (p.stem().string() + "_m" + std::to_string(m) +
+                                           p.extension().string()))
+                           .string();
+    }
     out.runs.push_back(md::run_md(spec, [&](const md::MdProgress& p) {
       if (progress) progress(m, p);
     }));

@@ -168,6 +168,10 @@ int run_command(const RunOptions& options) {
     }
     if (md_scene) {
       summary["md"] = {{"status", "failed"}};
+      md_scene->spec.creator_version = GRANVV_VERSION;
+      if (md_scene->spec.snapshot_interval > 0.0) {
+        md_scene->spec.h5md_path = (dir / "particles.h5").string();
+      }
       const MdOutcome md = run_particles(*md_scene, scene.progress_seconds, *log);
       if (writer) write_md_results(dir / "results.h5", *md_scene, md);
       summary["md"] = md_summary(*md_scene, md);

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
+#include "md_bridge/h5md_writer.hpp"
 #include "md_bridge/lammps_session.hpp"
 #include "md_bridge/moment_reduction.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -82,6 +84,21 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
                 "neighbor 0.3 bin", "neigh_modify delay 0 every 1 check yes",
                 "fix integrate all nve/sphere disc", "fix plane all enforce2d"});
 
+  // Particle output in H5MD layout (rank 0 writes; gathering is collective).
+  std::unique_ptr<H5mdWriter> h5md;
+  if (!spec.h5md_path.empty() && lmp.rank() == 0) {
+    h5md = std::make_unique<H5mdWriter>(spec.h5md_path, scene.particles, lx, ly,
+                                        spec.creator_version);
+  }
+  double next_frame = 0.0;
+  auto write_frame = [&](double time) {
+    if (spec.snapshot_interval <= 0.0 || spec.h5md_path.empty()) return;
+    if (time < next_frame - 0.5 * contact.dt) return;
+    const auto x = lmp.gather_atoms("x", 3), v = lmp.gather_atoms("v", 3);
+    if (h5md) h5md->append_particles(result.steps, time, x, v);
+    next_frame += spec.snapshot_interval;
+  };
+
   double t = 0.0;
   size_t next_output = 0;
   bool first_run = true, changed = false;
@@ -101,6 +118,13 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
     s.kn.push_back(contact.kn);
     s.dt.push_back(contact.dt);
     if (snapshot) result.snapshots.push_back({t, grainer.fields(m)});
+    if (h5md) {
+      h5md->append_observable("thermal_energy", result.steps, t, e.thermal);
+      h5md->append_observable("kinetic_energy_x", result.steps, t, e.kinetic_macro_x);
+      h5md->append_observable("kinetic_energy_y", result.steps, t, e.kinetic_macro_y);
+      h5md->append_observable("total_energy", result.steps, t, e.kinetic_total);
+    }
+    write_frame(t);
   };
   const auto& outputs = spec.output_times;
   while (next_output < outputs.size() && outputs[next_output] <= 0.0) ++next_output;
@@ -109,6 +133,7 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   while (t < spec.t_end - 0.5 * contact.dt) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
     double target = std::min(spec.t_end, t + spec.sample_interval);
+    if (spec.snapshot_interval > 0.0 && !spec.h5md_path.empty()) target = std::min(target, next_frame);
     bool snapshot = false;
     if (next_output < outputs.size() && outputs[next_output] <= target + 0.5 * contact.dt) {
       target = outputs[next_output];

@@ -32,6 +32,11 @@ struct MdRunSpec {
   bool adaptive_stiffness = true;
   double adapt_below = 0.5;  // re-stiffen when the fastest speed fell below this fraction
   std::string log_file = "none";
+  // H5MD particle snapshots (md_bridge/h5md_writer.hpp): every snapshot_interval of MD time
+  // (0 = none), written by rank 0 to h5md_path; the whole-box observables at every sample.
+  double snapshot_interval = 0.0;
+  std::string h5md_path;
+  std::string creator_version = "granvv";
 };
 
 // Whole-box time series (MD units). T = thermal / N: granular temperature with the local

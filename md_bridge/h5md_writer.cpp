@@ -1,0 +1,372 @@
+#include "md_bridge/h5md_writer.hpp"
+
+#include <H5Cpp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace granvv::md {
+namespace {
+
+constexpr hsize_t kSeriesChunk = 1024;            // frames per chunk of a 1D series
+constexpr hsize_t kMaxParticlesPerChunk = 65536;  // 1 MiB chunks of [1][n][2] doubles
+
+// Fixed-length, null-terminated ASCII string type holding strings up to `length` characters.
+H5::StrType fixed_string_type(size_t length) {
+  H5::StrType type(H5::PredType::C_S1, length + 1);
+  type.setStrpad(H5T_STR_NULLTERM);
+  type.setCset(H5T_CSET_ASCII);
+  return type;
+}
+
+void string_attribute(H5::H5Object& object, const std::string& name, const std::string& value) {
+  const auto type = fixed_string_type(value.size());
+  object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR)).write(type, value.c_str());
+}
+
+void string_array_attribute(H5::H5Object& object, const std::string& name,
+                            const std::vector<std::string>& values) {
+  size_t length = 0;
+  for (const auto& v : values) length = std::max(length, v.size());
+  std::vector<char> buffer(values.size() * (length + 1), '\0');
+  for (size_t i = 0; i < values.size(); ++i) values[i].copy(&buffer[i * (length + 1)], length);
+  const auto type = fixed_string_type(length);
+  const hsize_t dims[1] = {values.size()};
+  object.createAttribute(name, type, H5::DataSpace(1, dims)).write(type, buffer.data());
+}
+
+// One time-dependent H5MD element: step, time and value, extended together frame by frame.
+struct Series {
+  H5::DataSet step, time, value;
+  std::vector<hsize_t> frame_shape;  // shape of one sample: {} for scalars, {N, 2} for vectors
+  hsize_t frames = 0;
+  bool owns_step_time = true;  // false where step and time are hard links to another element
+
+  long long last_step = 0;
+  double last_time = 0.0;
+};
+
+H5::DataSet extendible_dataset(H5::Group& group, const std::string& name,
+                               const H5::DataType& file_type,
+                               const std::vector<hsize_t>& frame_shape,
+                               const std::vector<hsize_t>& chunk_frame_shape,
+                               hsize_t chunk_frames) {
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{chunk_frames};
+  for (size_t d = 0; d < frame_shape.size(); ++d) {
+    dims.push_back(frame_shape[d]);
+    max_dims.push_back(frame_shape[d]);
+    chunk.push_back(chunk_frame_shape[d]);
+  }
+  H5::DSetCreatPropList props;
+  props.setChunk(static_cast<int>(chunk.size()), chunk.data());
+  const H5::DataSpace space(static_cast<int>(dims.size()), dims.data(), max_dims.data());
+  return group.createDataSet(name, file_type, space, props);
+}
+
+// Creates <parent>/<name>/{step,time,value}. With `shared` given, step and time are hard links
+// to those of `shared` (H5MD: elements sampled at equal times may share them).
+Series create_series(H5::Group& parent, const std::string& name,
+                     const std::vector<hsize_t>& frame_shape,
+                     const std::vector<hsize_t>& chunk_frame_shape, hsize_t chunk_frames,
+                     const Series* shared = nullptr) {
+  Series s;
+  s.frame_shape = frame_shape;
+  H5::Group group = parent.createGroup(name);
+  if (shared) {
+    const hid_t g = group.getId();
+    if (H5Lcreate_hard(shared->step.getId(), ".", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
+        H5Lcreate_hard(shared->time.getId(), ".", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)
+      throw std::runtime_error("cannot link step and time of " + name);
+    s.step = shared->step;
+    s.time = shared->time;
+    s.owns_step_time = false;
+  } else {
+    s.step = extendible_dataset(group, "step", H5::PredType::STD_I64LE, {}, {}, kSeriesChunk);
+    s.time = extendible_dataset(group, "time", H5::PredType::IEEE_F64LE, {}, {}, kSeriesChunk);
+  }
+  s.value = extendible_dataset(group, "value", H5::PredType::IEEE_F64LE, frame_shape,
+                               chunk_frame_shape, chunk_frames);
+  return s;
+}
+
+// Writes one sample at row `row` of an extendible dataset, growing it to row + 1 rows.
+void write_row(H5::DataSet& dataset, hsize_t row, const std::vector<hsize_t>& frame_shape,
+               const H5::PredType& memory_type, const void* data) {
+  std::vector<hsize_t> dims{row + 1}, start{row}, count{1};
+  for (const auto d : frame_shape) dims.push_back(d), start.push_back(0), count.push_back(d);
+  dataset.extend(dims.data());
+  H5::DataSpace file_space = dataset.getSpace();
+  file_space.selectHyperslab(H5S_SELECT_SET, count.data(), start.data());
+  const H5::DataSpace memory_space(static_cast<int>(count.size()), count.data());
+  dataset.write(data, memory_type, memory_space, file_space);
+}
+
+void check_order(const Series& s, const std::string& what, long long step, double time) {
+  if (!std::isfinite(time))
+    throw std::invalid_argument(what + ": time " + std::to_string(time) + " is not finite");
+  if (s.frames > 0 && step <= s.last_step)
+    throw std::invalid_argument(what + ": step " + std::to_string(step) +
+                                " does not follow the last step " + std::to_string(s.last_step) +
+                                " (steps must increase)");
+  if (s.frames > 0 && time < s.last_time)
+    throw std::invalid_argument(what + ": time " + std::to_string(time) +
+                                " precedes the last time " + std::to_string(s.last_time));
+}
+
+// Appends value (and, where the element owns them, step and time) at the next row. The value
+// goes first and step last, so that a reader never sees a step without its data.
+void append(Series& s, long long step, double time, const double* value) {
+  write_row(s.value, s.frames, s.frame_shape, H5::PredType::NATIVE_DOUBLE, value);
+  if (s.owns_step_time) {
+    const std::int64_t step64 = step;
+    write_row(s.time, s.frames, {}, H5::PredType::NATIVE_DOUBLE, &time);
+    write_row(s.step, s.frames, {}, H5::PredType::NATIVE_INT64, &step64);
+  }
+  ++s.frames;
+  s.last_step = step;
+  s.last_time = time;
+}
+
+std::string default_author() {
+  for (const char* variable : {"USER", "LOGNAME"}) {
+    const char* value = std::getenv(variable);
+    if (value && *value) return value;
+  }
+  return "unknown";
+}
+
+bool valid_element_name(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos;
+}
+
+}  // namespace
+
+struct H5mdWriter::Impl {
+  std::string path;
+  long long n = 0;
+  double lx = 0.0, ly = 0.0;
+  H5::H5File file;
+  H5::Group observables;
+  Series position, velocity;
+  std::map<std::string, Series> observable;
+  std::vector<double> buffer;  // one frame of [N][2] values
+  bool open = false;
+
+  [[noreturn]] void fail(const std::string& what, const H5::Exception& e) const {
+    throw std::runtime_error("H5MD file " + path + ": " + what + ": " + e.getDetailMsg());
+  }
+  void require_open(const char* what) const {
+    if (!open) throw std::logic_error("H5MD file " + path + ": " + what + " after close()");
+  }
+};
+
+const std::vector<std::string>& H5mdWriter::standard_observables() {
+  static const std::vector<std::string> names{"thermal_energy", "kinetic_energy_x",
+                                              "kinetic_energy_y", "total_energy"};
+  return names;
+}
+
+H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double box_length,
+                       double box_width, const std::string& creator_version,
+                       const std::string& author)
+    : impl_(std::make_unique<Impl>()) {
+  auto& m = *impl_;
+  m.path = path;
+  if (n_particles < 1)
+    throw std::invalid_argument(
+        "H5MD file " + path + ": n_particles = " + std::to_string(n_particles) + ", must be >= 1");
+  if (!(std::isfinite(box_length) && box_length > 0 && std::isfinite(box_width) && box_width > 0))
+    throw std::invalid_argument("H5MD file " + path + ": box " + std::to_string(box_length) +
+                                " x " + std::to_string(box_width) +
+                                ", both edges must be finite and > 0");
+  m.n = n_particles;
+  m.lx = box_length;
+  m.ly = box_width;
+  m.buffer.resize(static_cast<size_t>(2 * n_particles));
+
+  H5::Exception::dontPrint();
+  try {
+    H5::FileAccPropList access;
+    // HDF5 1.8 format (superblock 2), as H5MD recommends; it carries no consistency flags, so
+    // a file left by a killed process opens without h5clear.
+    access.setLibverBounds(H5F_LIBVER_V18, H5F_LIBVER_V18);
+    // No file lock, so that other processes can read the file during the run.
+    if (H5Pset_file_locking(access.getId(), false, true) < 0)
+      throw std::runtime_error("H5MD file " + path + ": cannot disable file locking");
+    m.file = H5::H5File(path, H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access);
+    m.open = true;
+
+    H5::Group h5md = m.file.createGroup("h5md");
+    const int version[2] = {1, 1};
+    const hsize_t two[1] = {2};
+    h5md.createAttribute("version", H5::PredType::STD_I32LE, H5::DataSpace(1, two))
+        .write(H5::PredType::NATIVE_INT, version);
+    H5::Group author_group = h5md.createGroup("author");
+    string_attribute(author_group, "name", author.empty() ? default_author() : author);
+    H5::Group creator = h5md.createGroup("creator");
+    string_attribute(creator, "name", "granvv");
+    string_attribute(creator, "version", creator_version);
+
+    H5::Group all = m.file.createGroup("particles").createGroup("all");
+    H5::Group box = all.createGroup("box");
+    const int dimension = 2;
+    box.createAttribute("dimension", H5::PredType::STD_I32LE, H5::DataSpace(H5S_SCALAR))
+        .write(H5::PredType::NATIVE_INT, &dimension);
+    string_array_attribute(box, "boundary", {"periodic", "periodic"});
+    const double edges[2] = {box_length, box_width};
+    box.createDataSet("edges", H5::PredType::IEEE_F64LE, H5::DataSpace(1, two))
+        .write(edges, H5::PredType::NATIVE_DOUBLE);
+
+    const hsize_t n = static_cast<hsize_t>(n_particles);
+    std::vector<std::int64_t> ids(n);
+    for (hsize_t i = 0; i < n; ++i) ids[i] = static_cast<std::int64_t>(i + 1);
+    const hsize_t id_dims[1] = {n};
+    all.createDataSet("id", H5::PredType::STD_I64LE, H5::DataSpace(1, id_dims))
+        .write(ids.data(), H5::PredType::NATIVE_INT64);
+
+    const std::vector<hsize_t> frame{n, 2}, chunk{std::min(n, kMaxParticlesPerChunk), 2};
+    m.position = create_series(all, "position", frame, chunk, 1);
+    m.velocity = create_series(all, "velocity", frame, chunk, 1, &m.position);
+
+    m.observables = m.file.createGroup("observables");
+    for (const auto& name : standard_observables())
+      m.observable.emplace(name, create_series(m.observables, name, {}, {}, kSeriesChunk));
+    m.file.flush(H5F_SCOPE_LOCAL);
+  } catch (const H5::Exception& e) {
+    m.fail("cannot create", e);
+  }
+}
+
+H5mdWriter::~H5mdWriter() {
+  try {
+    close();
+  } catch (...) {  // a destructor must not throw; close() has flushed all it could
+  }
+}
+
+H5mdWriter::H5mdWriter(H5mdWriter&&) noexcept = default;
+H5mdWriter& H5mdWriter::operator=(H5mdWriter&& other) noexcept {
+  if (this != &other) {
+    try {
+      close();
+    } catch (...) {  // as in the destructor
+    }
+    impl_ = std::move(other.impl_);
+  }
+  return *this;
+}
+
+H5mdWriter::Impl& H5mdWriter::impl() const {
+  if (!impl_) throw std::logic_error("H5mdWriter used after being moved from");
+  return *impl_;
+}
+
+void H5mdWriter::append_particles(long long step, double time, const std::vector<double>& x_xyz,
+                                  const std::vector<double>& v_xyz) {
+  auto& m = impl();
+  m.require_open("append_particles");
+  const std::string what = "H5MD file " + m.path + ": particles";
+  const size_t values = static_cast<size_t>(3 * m.n);
+  if (x_xyz.size() != values || v_xyz.size() != values)
+    throw std::invalid_argument(what + ": got " + std::to_string(x_xyz.size()) + " positions and " +
+                                std::to_string(v_xyz.size()) +
+                                " velocities, need 3 N = " + std::to_string(values) + " each");
+  check_order(m.position, what, step, time);
+  try {
+    // Velocity first: its step and time are the position's, which append() writes last.
+    for (long long i = 0; i < m.n; ++i) {
+      m.buffer[2 * i] = v_xyz[3 * i];
+      m.buffer[2 * i + 1] = v_xyz[3 * i + 1];
+    }
+    append(m.velocity, step, time, m.buffer.data());
+    for (long long i = 0; i < m.n; ++i) {
+      m.buffer[2 * i] = wrap(x_xyz[3 * i], m.lx);
+      m.buffer[2 * i + 1] = wrap(x_xyz[3 * i + 1], m.ly);
+    }
+    append(m.position, step, time, m.buffer.data());
+    m.file.flush(H5F_SCOPE_LOCAL);
+  } catch (const H5::Exception& e) {
+    m.fail("cannot append particle frame at step " + std::to_string(step), e);
+  }
+}
+
+void H5mdWriter::append_observable(const std::string& name, long long step, double time,
+                                   double value) {
+  auto& m = impl();
+  m.require_open("append_observable");
+  const std::string what = "H5MD file " + m.path + ": observable '" + name + "'";
+  if (!valid_element_name(name))
+    throw std::invalid_argument(what + ": not a valid name (non-empty, no '/', not . or ..)");
+  try {
+    auto it = m.observable.find(name);
+    if (it == m.observable.end()) {
+      it = m.observable.emplace(name, create_series(m.observables, name, {}, {}, kSeriesChunk))
+               .first;
+    }
+    check_order(it->second, what, step, time);
+    append(it->second, step, time, &value);
+    m.file.flush(H5F_SCOPE_LOCAL);
+  } catch (const H5::Exception& e) {
+    m.fail("cannot append observable '" + name + "' at step " + std::to_string(step), e);
+  }
+}
+
+void H5mdWriter::flush() {
+  auto& m = impl();
+  m.require_open("flush");
+  try {
+    m.file.flush(H5F_SCOPE_LOCAL);
+  } catch (const H5::Exception& e) {
+    m.fail("cannot flush", e);
+  }
+}
+
+void H5mdWriter::close() {
+  if (!impl_ || !impl_->open) return;
+  auto& m = *impl_;
+  m.open = false;
+  try {
+    m.file.flush(H5F_SCOPE_LOCAL);
+    m.observable.clear();
+    m.position = Series{};
+    m.velocity = Series{};
+    m.observables.close();
+    m.file.close();
+  } catch (const H5::Exception& e) {
+    m.fail("cannot close", e);
+  }
+}
+
+const std::string& H5mdWriter::path() const {
+  return impl().path;
+}
+long long H5mdWriter::n_particles() const {
+  return impl().n;
+}
+long long H5mdWriter::particle_frames() const {
+  return static_cast<long long>(impl().position.frames);
+}
+long long H5mdWriter::observable_frames(const std::string& name) const {
+  const auto& m = impl();
+  const auto it = m.observable.find(name);
+  return it == m.observable.end() ? 0 : static_cast<long long>(it->second.frames);
+}
+
+double H5mdWriter::wrap(double x, double length) {
+  if (!std::isfinite(x)) return x;
+  const double half = 0.5 * length;
+  if (x >= -half && x < half) return x;
+  double y = x - length * std::floor((x + half) / length);
+  // Rounding can land exactly on the upper edge (x just below an image of -L/2) or a hair
+  // below the lower one.
+  if (y >= half) y -= length;
+  if (y < -half) y = -half;
+  return y;
+}
+
+}  // namespace granvv::md

@@ -1,0 +1,97 @@
+#pragma once
+// Particle snapshots and scalar observables of an MD run in the H5MD 1.1 layout (de Buyl,
+// Colberg & Höfling, Comp. Phys. Comm. 185, 1546 (2014); h5md.nongnu.org), so that H5MD
+// readers and plain HDF5 tools (h5py, h5ls) read them. Layout written:
+//
+//   /h5md                        +-- version: int32[2] = {1, 1}
+//        \-- author              +-- name: string (fixed length, scalar)
+//        \-- creator             +-- name: "granvv", version: string (the version passed in)
+//   /particles/all
+//        \-- box                 +-- dimension: int32 = 2
+//        |                       +-- boundary: string[2] = {"periodic", "periodic"}
+//        |    \-- edges: float64[2] = {Lx, Ly}              (a fixed box: time-independent)
+//        \-- id: int64[N] = {1, ..., N}                     (row i holds LAMMPS atom ID i + 1)
+//        \-- position
+//        |    \-- step: int64[frames]
+//        |    \-- time: float64[frames]
+//        |    \-- value: float64[frames][N][2]              (wrapped into the box, see below)
+//        \-- velocity
+//             \-- step, time: hard links to position/step and position/time
+//             \-- value: float64[frames][N][2]
+//   /observables/<name>          one per observable; thermal_energy, kinetic_energy_x,
+//        \-- step: int64[frames]                  kinetic_energy_y and total_energy always
+//        \-- time: float64[frames]                exist (possibly with 0 frames); any other
+//        \-- value: float64[frames]               name is created on its first append.
+//
+// Every time-dependent dataset is chunked and extendible along its first (frame) axis; strings
+// are fixed-length, null-terminated ASCII, as H5MD requires. Units are those of the MD run
+// (sigma = m = T0 = 1, DESIGN.md §4); step is the LAMMPS time step count and time the physical
+// time. Steps must increase strictly and times must not decrease within each element (H5MD
+// requires monotonic step/time so that readers may bisect them).
+//
+// Positions are written modulo the box into [-Lx/2, Lx/2) x [-Ly/2, Ly/2), the LAMMPS box of
+// md_run (`region box block -Lx/2 Lx/2 -Ly/2 Ly/2`); no image element is written.
+//
+// Crash safety: the file uses the HDF5 1.8 object format (superblock version 2, no
+// file-consistency flags), and every append ends with a flush. A process that dies between two
+// appends (an error inside LAMMPS ends the whole process, DESIGN.md §5) leaves a valid file
+// holding every frame appended so far. The writer takes no HDF5 file lock, so other processes
+// may open the file read-only while the run goes on (they see the state of the last flush;
+// a read that overlaps an append may fail and is to be retried).
+//
+// One process writes (under MPI: rank 0, after lammps_gather_atoms); a snapshot of a
+// multi-million-particle run is a gather of every particle, so keep such frames rare.
+// Needs HDF5 >= 1.10.7 (H5Pset_file_locking).
+//
+// Errors (bad arguments, HDF5 failures) throw std::invalid_argument or std::runtime_error,
+// naming the file; an append that throws leaves the frames already flushed intact.
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace granvv::md {
+
+class H5mdWriter {
+ public:
+  // The observables created with the file.
+  static const std::vector<std::string>& standard_observables();
+
+  // Creates (truncating) the file at `path`; its directory must exist. n_particles >= 1,
+  // box_length = Lx and box_width = Ly finite and > 0. An empty author is replaced by $USER
+  // (or "unknown"): H5MD makes /h5md/author/name mandatory.
+  H5mdWriter(const std::string& path, long long n_particles, double box_length, double box_width,
+             const std::string& creator_version, const std::string& author = "");
+  ~H5mdWriter();  // closes the file; never throws
+  H5mdWriter(H5mdWriter&&) noexcept;
+  H5mdWriter& operator=(H5mdWriter&&) noexcept;
+  H5mdWriter(const H5mdWriter&) = delete;
+  H5mdWriter& operator=(const H5mdWriter&) = delete;
+
+  // One particle frame. x_xyz and v_xyz are LAMMPS-style triplets (x0 y0 z0 x1 y1 z1 ...)
+  // ordered by atom ID (lammps_gather_atoms order), 3 N values each; z is ignored. Appends to
+  // /particles/all/{position,velocity} and flushes.
+  void append_particles(long long step, double time, const std::vector<double>& x_xyz,
+                        const std::vector<double>& v_xyz);
+  // One sample of the scalar observable /observables/<name> (created on first use; a name is
+  // non-empty, without '/', and not "." or ".."). Flushes.
+  void append_observable(const std::string& name, long long step, double time, double value);
+
+  void flush();
+  // Flushes and closes the file; later appends throw std::logic_error. Idempotent.
+  void close();
+
+  const std::string& path() const;
+  long long n_particles() const;
+  long long particle_frames() const;
+  long long observable_frames(const std::string& name) const;  // 0 for an unknown name
+
+  // x modulo length, into [-length/2, length/2); non-finite x is returned unchanged.
+  static double wrap(double x, double length);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  Impl& impl() const;
+};
+
+}  // namespace granvv::md
