@@ -10,7 +10,9 @@ namespace {
 
 using nlohmann::json;
 
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json number_or_null(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
 
 void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
   const hsize_t dims[1] = {v.size()};
@@ -103,8 +105,8 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_fit_window", {out.haff.t_min, out.haff.t_max}},
       {"haff_t0_theory", out.haff_t0_theory},
       {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
-      {"haff_t0_deviation", out.haff.t0 / out.haff_t0_theory - 1.0},
-      {"haff_t0_deviation_dilute", out.haff.t0 / out.haff_t0_theory_dilute - 1.0},
+      {"haff_t0_deviation", number_or_null(out.haff.t0 / out.haff_t0_theory - 1.0)},
+      {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
       {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", noise},

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "md_bridge/particle_sampler.hpp"
@@ -39,9 +39,9 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   s.ensemble = static_cast<int>(c.integer("md.ensemble"));
   spec.snapshot_interval = c.real("md.snapshot_interval");
   if (spec.sample_interval > spec.t_end) {
-    throw ConfigError(c.origin("md.sample_interval") + ": md.sample_interval = " +
-                      format_real(spec.sample_interval) + ": must be <= md.t_end = " +
-                      format_real(spec.t_end));
+    throw ConfigError(c.origin("md.sample_interval") +
+                      ": md.sample_interval = " + format_real(spec.sample_interval) +
+                      ": must be <= md.t_end = " + format_real(spec.t_end));
   }
   // What the coarse-grainer and the sampler would refuse, refused here with the key named.
   try {
@@ -49,16 +49,17 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                              spec.scene.box_width, spec.bins, spec.kernel, spec.kernel_width});
     (void)check;
   } catch (const std::invalid_argument& e) {
-    throw ConfigError(c.origin("md.kernel_width") + ": md.kernel_width = " +
-                      format_real(spec.kernel_width) + ": " + e.what());
+    throw ConfigError(c.origin("md.kernel_width") +
+                      ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
   }
   // The densest point of the initial profile must still take disks without overlap.
   double n_max = 0.0;
   for (int i = 0; i < 4096; ++i) n_max = std::max(n_max, spec.fields.n(-0.5 + (i + 0.5) / 4096));
   if (n_max * spec.scene.area_fraction > 0.5) {
-    throw ConfigError(c.origin("md.area_fraction") + ": md.area_fraction = " +
-                      format_real(spec.scene.area_fraction) + ": the initial density peak n/n0 = " +
-                      format_real(n_max) + " would need a local area fraction above 0.5");
+    throw ConfigError(c.origin("md.area_fraction") +
+                      ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
+                      ": the initial density peak n/n0 = " + format_real(n_max) +
+                      " would need a local area fraction above 0.5");
   }
   if (spec.scene.particles > 2'000'000) {
     throw ConfigError(c.origin("md.particles") + ": the scene needs " +
@@ -83,8 +84,8 @@ MdOutcome run_md_scene(const MdScene& scene,
   out.restitution_measured = md::measure_restitution(model, 1.0);
   if (std::abs(out.restitution_measured - sc.restitution) > 1e-3) {
     std::ostringstream why;
-    why << "restitution measured in LAMMPS " << out.restitution_measured << " misses md.restitution = "
-        << sc.restitution << " by more than 1e-3; refusing the run";
+    why << "restitution measured in LAMMPS " << out.restitution_measured
+        << " misses md.restitution = " << sc.restitution << " by more than 1e-3; refusing the run";
     throw std::runtime_error(why.str());
   }
   std::vector<std::vector<double>> ts, Ts;
@@ -93,8 +94,8 @@ MdOutcome run_md_scene(const MdScene& scene,
     spec.seed += static_cast<std::uint64_t>(m);
     if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
       const std::filesystem::path p = spec.h5md_path;
-      spec.h5md_path = (p.parent_path() / (p.stem().string() + "_m" + std::to_string(m) +
-                                           p.extension().string()))
+      spec.h5md_path = (p.parent_path() /
+                        (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
                            .string();
     }
     out.runs.push_back(md::run_md(spec, [&](const md::MdProgress& p) {
@@ -104,7 +105,11 @@ MdOutcome run_md_scene(const MdScene& scene,
     ts.push_back(out.runs.back().series.t);
     Ts.push_back(out.runs.back().series.T);
   }
-  out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, scene.spec.t_end);
+  try {
+    out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, scene.spec.t_end);
+  } catch (const std::invalid_argument&) {  // too few samples, or no cooling: no fit (null)
+    out.haff.t0 = out.haff.t0_error = out.haff.T0 = std::nan("");
+  }
   out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
   out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
   const size_t samples = out.runs.front().series.T.size();
@@ -117,10 +122,12 @@ MdOutcome run_md_scene(const MdScene& scene,
     }
     const double mean = sum / k;
     out.T_mean.push_back(mean);
-    out.T_stderr.push_back(k > 1 ? std::sqrt(std::max(0.0, (sum2 / k - mean * mean)) * k / (k - 1) / k)
-                                 : std::nan(""));
+    out.T_stderr.push_back(
+        k > 1 ? std::sqrt(std::max(0.0, (sum2 / k - mean * mean)) * k / (k - 1) / k)
+              : std::nan(""));
   }
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

@@ -18,10 +18,10 @@
 #include "app/hydro_scene.hpp"
 #include "app/md_output.hpp"
 #include "app/md_scene.hpp"
-#include "md_bridge/lammps_session.hpp"
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
+#include "md_bridge/lammps_session.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -62,10 +62,11 @@ double progress_fraction(const hydro::Progress& p) {
 // The particle engine with a progress line every progress_seconds and its throughput.
 MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::logger& log) {
   const auto& sc = scene.spec.scene;
-  log.info("md: {} disks, Lx = {:.6g}, Ly = {:.6g} sigma, phi = {:.4g}, r = {:.6g} (K = {:.4g}, "
-           "q = {:.4g}, {} unstable modes), ensemble of {}",
-           sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution,
-           sc.physics().K, sc.physics().q, sc.unstable_modes(), scene.ensemble);
+  log.info(
+      "md: {} disks, Lx = {:.6g}, Ly = {:.6g} sigma, phi = {:.4g}, r = {:.6g} (K = {:.4g}, "
+      "q = {:.4g}, {} unstable modes), ensemble of {}",
+      sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution, sc.physics().K,
+      sc.physics().q, sc.unstable_modes(), scene.ensemble);
   auto last = std::chrono::steady_clock::now();
   const MdOutcome out = run_md_scene(scene, [&](int member, const md::MdProgress& p) {
     const auto now = std::chrono::steady_clock::now();
@@ -79,10 +80,11 @@ MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::l
   });
   log.info("md: restitution measured in LAMMPS {:.6f} (target {:.6f})", out.restitution_measured,
            sc.restitution);
-  log.info("md: {:.3g} s wall, {:.3g} atom-steps/s, Haff t0 = {:.5g} +- {:.2g} (kinetic theory "
-           "{:.5g} with chi(phi), {:.5g} dilute)",
-           out.wall_seconds, out.atom_steps / out.wall_seconds, out.haff.t0, out.haff.t0_error,
-           out.haff_t0_theory, out.haff_t0_theory_dilute);
+  log.info(
+      "md: {:.3g} s wall, {:.3g} atom-steps/s, Haff t0 = {:.5g} +- {:.2g} (kinetic theory "
+      "{:.5g} with chi(phi), {:.5g} dilute)",
+      out.wall_seconds, out.atom_steps / out.wall_seconds, out.haff.t0, out.haff.t0_error,
+      out.haff_t0_theory, out.haff_t0_theory_dilute);
   return out;
 }
 
@@ -169,6 +171,18 @@ int run_command(const RunOptions& options) {
     if (md_scene) {
       summary["md"] = {{"status", "failed"}};
       md_scene->spec.creator_version = GRANVV_VERSION;
+      // The Debian LAMMPS ends the process on any error inside a command. Until the particle
+      // run returns, the summary on disk says so, the hydro results are already in results.h5,
+      // and LAMMPS' own log (with its error message) is in the output folder.
+      md_scene->spec.log_file = writer ? (dir / "log.lammps").string() : "none";
+      summary["md"]["error"] =
+          "the process ended inside the particle run (see log.lammps and run.log); results.h5 "
+          "holds the hydro results and particles*.h5 the particle frames written so far";
+      const nlohmann::json hydro_status = summary["status"];
+      summary["status"] = "failed";
+      if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+      summary["status"] = hydro_status;
+      log->info("md: LAMMPS log in {}", md_scene->spec.log_file);
       if (md_scene->spec.snapshot_interval > 0.0) {
         md_scene->spec.h5md_path = (dir / "particles.h5").string();
       }

@@ -35,9 +35,9 @@ HaffFit fit_haff(const std::vector<double>& t, const std::vector<double>& T, dou
   const double sigma2 = ss / std::max(1.0, n - 2), sxx_c = sxx - sx * sx / n;
   const double var_b = sigma2 / sxx_c, var_a = sigma2 * (1.0 / n + (sx / n) * (sx / n) / sxx_c);
   const double cov_ab = -sigma2 * (sx / n) / sxx_c;
-  f.t0_error = std::abs(f.t0) * std::sqrt(std::max(0.0, var_a / (intercept * intercept) +
-                                                            var_b / (slope * slope) -
-                                                            2 * cov_ab / (intercept * slope)));
+  f.t0_error = std::abs(f.t0) *
+               std::sqrt(std::max(0.0, var_a / (intercept * intercept) + var_b / (slope * slope) -
+                                           2 * cov_ab / (intercept * slope)));
   return f;
 }
 

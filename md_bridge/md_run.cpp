@@ -69,8 +69,8 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   auto num = [](double x) { return lammps_number(x); };
   lmp.commands({"units lj", "dimension 2", "atom_style sphere", "atom_modify map array",
                 "boundary p p p", "comm_modify vel yes",
-                "region box block " + num(-0.5 * lx) + " " + num(0.5 * lx) + " " +
-                    num(-0.5 * ly) + " " + num(0.5 * ly) + " -0.5 0.5",
+                "region box block " + num(-0.5 * lx) + " " + num(0.5 * lx) + " " + num(-0.5 * ly) +
+                    " " + num(0.5 * ly) + " -0.5 0.5",
                 "create_box 1 box"});
   AtomBatch atoms;
   atoms.type.assign(sample.count(), 1);
@@ -87,8 +87,8 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   // Particle output in H5MD layout (rank 0 writes; gathering is collective).
   std::unique_ptr<H5mdWriter> h5md;
   if (!spec.h5md_path.empty() && lmp.rank() == 0) {
-    h5md = std::make_unique<H5mdWriter>(spec.h5md_path, scene.particles, lx, ly,
-                                        spec.creator_version);
+    h5md =
+        std::make_unique<H5mdWriter>(spec.h5md_path, scene.particles, lx, ly, spec.creator_version);
   }
   double next_frame = 0.0;
   auto write_frame = [&](double time) {
@@ -133,7 +133,8 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   while (t < spec.t_end - 0.5 * contact.dt) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
     double target = std::min(spec.t_end, t + spec.sample_interval);
-    if (spec.snapshot_interval > 0.0 && !spec.h5md_path.empty()) target = std::min(target, next_frame);
+    if (spec.snapshot_interval > 0.0 && !spec.h5md_path.empty())
+      target = std::min(target, next_frame);
     bool snapshot = false;
     if (next_output < outputs.size() && outputs[next_output] <= target + 0.5 * contact.dt) {
       target = outputs[next_output];
@@ -157,8 +158,8 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
       if (now > 0.0 && now < spec.adapt_below * speed) {
         speed = now;
         contact = contact_for_speed(spec, speed);
-        lmp.commands({pair_style_command(contact), pair_coeff_command(),
-                      timestep_command(contact)});
+        lmp.commands(
+            {pair_style_command(contact), pair_coeff_command(), timestep_command(contact)});
         changed = true;
         ++result.stiffness_changes;
       }

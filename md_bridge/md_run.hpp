@@ -21,9 +21,9 @@ struct MdRunSpec {
   ParticleScene scene;
   hydro::InitialFields fields;  // scaled units (hydro/initial_conditions.hpp)
   std::uint64_t seed = 1;
-  double t_end = 100.0;               // MD units
-  double sample_interval = 1.0;       // time series every this much MD time
-  std::vector<double> output_times;   // coarse-grained snapshots (nearest step), MD units
+  double t_end = 100.0;              // MD units
+  double sample_interval = 1.0;      // time series every this much MD time
+  std::vector<double> output_times;  // coarse-grained snapshots (nearest step), MD units
   int bins = 100;
   std::string kernel = "bin";
   double kernel_width = 0.0;  // sigma

@@ -50,7 +50,9 @@ ParticleScene scene_from_particles(long long particles, double area_fraction, do
   return s;
 }
 
-double enskog_chi(double phi) { return (1.0 - 7.0 * phi / 16.0) / ((1.0 - phi) * (1.0 - phi)); }
+double enskog_chi(double phi) {
+  return (1.0 - 7.0 * phi / 16.0) / ((1.0 - phi) * (1.0 - phi));
+}
 
 double haff_time_md(const ParticleScene& s, double chi) {
   const double r = s.restitution;

@@ -16,7 +16,7 @@ struct ParticleScene {
   double area_fraction = 0.0;  // phi = N pi sigma^2 / (4 Lx Ly)
   double restitution = 0.0;    // r
 
-  double number_density() const;  // n0 sigma^2
+  double number_density() const;   // n0 sigma^2
   hydro::Physics physics() const;  // K, q
   // Clustering modes with pi k K < sqrt(q) (paper); shear modes with pi k K < 2 sqrt(q).
   int unstable_modes() const;

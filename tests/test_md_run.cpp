@@ -123,3 +123,29 @@ TEST(MdCli, SmallHaffSceneThroughTheCli) {
 
 }  // namespace
 }  // namespace granvv::md
+
+namespace granvv::md {
+namespace {
+
+// The Debian LAMMPS ends the process on an error inside a command. A process that dies in
+// the particle run (here: killed) leaves a summary saying so and the hydro results readable.
+TEST(MdCli, ProcessEndingInsideTheParticleRunLeavesReadableOutputs) {
+  const auto dir = granvv::testing::fresh_directory("md-killed");
+  const std::string command = "timeout -s KILL 4 " + std::string(GRANVV_BINARY) +
+                              " run md_haff --quiet --no-report --set md.t_end=1e4 --out " +
+                              dir.string() + " > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_NE(status, 0);
+  ASSERT_TRUE(std::filesystem::exists(dir / "summary.json"));
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_EQ(s["md"]["status"], "failed");
+  EXPECT_NE(s["md"]["error"].get<std::string>().find("log.lammps"), std::string::npos);
+  EXPECT_EQ(s["hydro"]["status"], "ok");  // the hydro part had finished and is kept
+  EXPECT_TRUE(std::filesystem::exists(dir / "results.h5"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "log.lammps"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace granvv::md
