@@ -1,0 +1,80 @@
+// Known answer on a real LAMMPS state: our coarse-grainer against LAMMPS's own
+// `compute chunk/atom bin/1d` + `compute temp/chunk ... com yes` + `compute vcm/chunk` on the
+// same atoms. LAMMPS divides the chunk's fluctuation energy by 2 N_b degrees of freedom (not
+// 2 N_b - 2, DESIGN.md §5), so T_lammps = T_ours (N_b - 1) / N_b exactly.
+#include <gtest/gtest.h>
+#include <lammps/library.h>
+
+#include <cmath>
+
+#include "hydro/initial_conditions.hpp"
+#include "md_bridge/coarse_grainer.hpp"
+#include "md_bridge/contact_model.hpp"
+#include "md_bridge/lammps_session.hpp"
+#include "md_bridge/particle_sampler.hpp"
+
+namespace granvv::md {
+namespace {
+
+TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
+  const ParticleScene scene = scene_from_particles(3000, 0.1, 30.0, 0.9);
+  hydro::InitialParameters ip;
+  ip.type = "single_mode";
+  ip.velocity_amplitude = -0.3;
+  const auto sample = sample_particles(scene, hydro::make_initial_fields(ip, {}), 3);
+  const double lx = scene.box_length, ly = scene.box_width;
+  const int bins = 25;
+
+  LammpsSession lmp;
+  auto num = [](double x) { return lammps_number(x); };
+  lmp.commands({"units lj", "dimension 2", "atom_style sphere", "atom_modify map array",
+                "boundary p p p", "comm_modify vel yes",
+                "region box block " + num(-0.5 * lx) + " " + num(0.5 * lx) + " " + num(-0.5 * ly) +
+                    " " + num(0.5 * ly) + " -0.5 0.5",
+                "create_box 1 box"});
+  AtomBatch atoms;
+  atoms.type.assign(sample.count(), 1);
+  atoms.x = sample.x;
+  atoms.v = sample.v;
+  atoms.diameter.assign(sample.count(), 1.0);
+  atoms.mass.assign(sample.count(), 1.0);
+  lmp.create_atoms(atoms);
+  ContactSpec c;
+  c.restitution = 0.9;
+  const ContactModel model = make_contact_model(c);
+  lmp.commands({pair_style_command(model), pair_coeff_command(), timestep_command(model),
+                "neighbor 0.3 bin", "neigh_modify delay 0 every 1 check yes",
+                "fix integrate all nve/sphere disc", "fix plane all enforce2d"});
+  lmp.run(500, true);  // collisions happen; atoms move, some across the periodic boundary
+  lmp.commands({"compute cc all chunk/atom bin/1d x lower " + num(lx / bins) + " units box",
+                "compute tc all temp/chunk cc temp com yes", "compute vc all vcm/chunk cc",
+                "compute nc all property/chunk cc count", "run 0 post no"});
+
+  CoarseGrainer grainer({-0.5 * lx, lx, -0.5 * ly, ly, bins, "bin", 0.0});
+  const Moments m = grainer.accumulate(lmp.x()[0], lmp.v()[0], lmp.rmass(), lmp.nlocal());
+  const FieldProfile f = grainer.fields(m);
+
+  auto* count = static_cast<double*>(
+      lammps_extract_compute(lmp.handle(), "nc", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR));
+  auto** temp = static_cast<double**>(
+      lammps_extract_compute(lmp.handle(), "tc", LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY));
+  auto** vcm = static_cast<double**>(
+      lammps_extract_compute(lmp.handle(), "vc", LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY));
+  ASSERT_NE(count, nullptr);
+  ASSERT_NE(temp, nullptr);
+  ASSERT_NE(vcm, nullptr);
+  double total = 0.0;
+  for (int b = 0; b < bins; ++b) {
+    const double nb = f.count[b];
+    total += nb;
+    EXPECT_EQ(nb, count[b]) << "bin " << b;
+    EXPECT_NEAR(f.n[b] * lx / bins * ly, nb, 1e-9);
+    EXPECT_NEAR(f.v_x[b], vcm[b][0], 1e-12) << "bin " << b;
+    EXPECT_NEAR(f.v_y[b], vcm[b][1], 1e-12) << "bin " << b;
+    EXPECT_NEAR(f.T[b] * (nb - 1) / nb, temp[b][0], 1e-10 * temp[b][0]) << "bin " << b;
+  }
+  EXPECT_EQ(total, 3000.0);
+}
+
+}  // namespace
+}  // namespace granvv::md
