@@ -133,7 +133,9 @@ def run_bridge(work, tag, sets, max_wait, ranks=1):
     cmd = granvv_cmd(out, sets, ranks)
     seconds, quiet = timed(cmd, max_wait)
     md = read_summary(out)
-    return {"tag": tag, "command": shell(cmd), "process_seconds": seconds,
+    with open(os.path.join(out, "summary.json")) as f:
+        version = json.load(f).get("granvv_version")
+    return {"tag": tag, "command": shell(cmd), "process_seconds": seconds, "granvv_version": version,
             "wall_seconds": md["wall_seconds"], "steps": md["steps"], "atom_steps": md["atom_steps"],
             "ranks": ranks, **quiet}, out
 
@@ -240,7 +242,8 @@ def run_lammps(work, tag, data, contact, steps, seed, max_wait, segmented=False)
 
 def part_bridge_vs_lammps(cfg, work):
     n = cfg["p1_particles"]
-    base = ["md.adaptive_stiffness=false", f"md.particles={n}"]
+    # md.ensemble = 1: one run, as bare lmp does (the case's default may be an ensemble)
+    base = ["md.adaptive_stiffness=false", f"md.particles={n}", "md.ensemble=1"]
     p = probe(work, base + ["md.t_end=0.05", "md.sample_interval=0.05"])
     contact = p["contact_initial"]
     dt = contact["dt"]
@@ -436,8 +439,11 @@ def part_adaptive(cfg, work):
     z[sel] = (ma[sel] - mf[sel]) / np.hypot(ef[sel], ea[sel])
     d = Ta - Tf  # paired, per member
     ed = np.nanstd(d, axis=0, ddof=1) / np.sqrt(k)
-    zp = np.zeros_like(mf)
-    zp[sel] = np.nanmean(d, axis=0)[sel] / ed[sel]
+    md_ = np.nanmean(d, axis=0)
+    zp = np.zeros_like(mf)  # identical members (no stiffness change yet) count as 0
+    ok = sel & (ed > 0)
+    zp[ok] = md_[ok] / ed[ok]
+    zp[sel & (ed == 0) & (md_ != 0)] = np.inf
     rel = (Ta / Tf - 1)[:, sel]
     sf = read_summary(outs[("fixed", 0)])
     sa = read_summary(outs[("adaptive", 0)])
@@ -637,6 +643,8 @@ def main():
         started = time.time()
         res = {"generated": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "quick": args.quick,
                "config": cfg, "load_limit": LOAD_LIMIT,
+               "granvv_binary_mtime": datetime.datetime.fromtimestamp(
+                   os.path.getmtime(GRANVV)).strftime("%Y-%m-%d %H:%M:%S"),
                "machine": {"cores": os.cpu_count(), "platform": platform.platform(),
                            "lammps": subprocess.run([LMP, "-h"], capture_output=True, text=True)
                            .stdout.splitlines()[1].strip()}}
@@ -645,6 +653,8 @@ def main():
         log("part 3: MPI")
         res["mpi"] = part_mpi(cfg, work, res["bridge_vs_lammps"])
         res["total_seconds"] = time.time() - started
+        res["granvv_binary_mtime_end"] = datetime.datetime.fromtimestamp(
+            os.path.getmtime(GRANVV)).strftime("%Y-%m-%d %H:%M:%S")
         with open(os.path.join(outdir, "md_benchmarks.json"), "w") as f:
             json.dump(res, f, indent=1)
         plot(res, os.path.join(outdir, "md_benchmarks.png"))
