@@ -1,36 +1,15 @@
 #include "app/md_output.hpp"
 
-#include <H5Cpp.h>
-
 #include <algorithm>
 #include <cmath>
+
+#include "app/hdf5_datasets.hpp"
+#include "app/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {
 
 using nlohmann::json;
-
-json number_or_null(double v) {
-  return std::isfinite(v) ? json(v) : json(nullptr);
-}
-
-void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
-  const hsize_t dims[1] = {v.size()};
-  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));
-  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
-}
-
-void write_matrix(H5::Group& g, const std::string& name, const std::vector<double>& v,
-                  hsize_t rows) {
-  const hsize_t dims[2] = {rows, rows ? v.size() / rows : 0};
-  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
-  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
-}
-
-void attribute(H5::Group& g, const std::string& name, double value) {
-  g.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR))
-      .write(H5::PredType::NATIVE_DOUBLE, &value);
-}
 
 // Mean and standard error over ensemble members of one field of every snapshot.
 void ensemble_field(const MdOutcome& out, const std::string& name,
@@ -121,17 +100,17 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
   H5::Group md = h5.createGroup("/md");
   const auto& sc = scene.spec.scene;
-  attribute(md, "particles", double(sc.particles));
-  attribute(md, "box_length", sc.box_length);
-  attribute(md, "box_width", sc.box_width);
-  attribute(md, "area_fraction", sc.area_fraction);
-  attribute(md, "restitution", sc.restitution);
-  attribute(md, "restitution_measured", out.restitution_measured);
-  attribute(md, "haff_t0_measured", out.haff.t0);
-  attribute(md, "haff_t0_measured_error", out.haff.t0_error);
-  attribute(md, "haff_T0_measured", out.haff.T0);
-  attribute(md, "haff_t0_theory", out.haff_t0_theory);
-  attribute(md, "haff_t0_theory_dilute", out.haff_t0_theory_dilute);
+  write_attribute(md, "particles", double(sc.particles));
+  write_attribute(md, "box_length", sc.box_length);
+  write_attribute(md, "box_width", sc.box_width);
+  write_attribute(md, "area_fraction", sc.area_fraction);
+  write_attribute(md, "restitution", sc.restitution);
+  write_attribute(md, "restitution_measured", out.restitution_measured);
+  write_attribute(md, "haff_t0_measured", out.haff.t0);
+  write_attribute(md, "haff_t0_measured_error", out.haff.t0_error);
+  write_attribute(md, "haff_T0_measured", out.haff.T0);
+  write_attribute(md, "haff_t0_theory", out.haff_t0_theory);
+  write_attribute(md, "haff_t0_theory_dilute", out.haff_t0_theory_dilute);
 
   H5::Group ts = h5.createGroup("/md/timeseries");
   const auto& base = out.runs.front().series;

@@ -5,49 +5,12 @@
 #include <cmath>
 #include <limits>
 
+#include "app/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::app {
 namespace {
-
-void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
-  const hsize_t dims[1] = {v.size()};
-  H5::DataSpace space(1, dims);
-  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space);
-  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
-}
-
-// rows x cols, row-major
-void write_matrix(H5::Group& g, const std::string& name, const std::vector<double>& v,
-                  hsize_t rows) {
-  const hsize_t dims[2] = {rows, rows ? v.size() / rows : 0};
-  H5::DataSpace space(2, dims);
-  auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space);
-  if (!v.empty()) ds.write(v.data(), H5::PredType::NATIVE_DOUBLE);
-}
-
-void write_strings(H5::Group& g, const std::string& name, const std::vector<std::string>& v) {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  const hsize_t dims[1] = {v.size()};
-  H5::DataSpace space(1, dims);
-  std::vector<const char*> ptrs;
-  for (const auto& s : v) ptrs.push_back(s.c_str());
-  g.createDataSet(name, type, space).write(ptrs.data(), type);
-}
-
-template <class Object>
-void attribute(Object& o, const std::string& name, const std::string& value) {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  const char* p = value.c_str();
-  o.createAttribute(name, type, H5::DataSpace(H5S_SCALAR)).write(type, &p);
-}
-
-template <class Object>
-void attribute(Object& o, const std::string& name, double value) {
-  o.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR))
-      .write(H5::PredType::NATIVE_DOUBLE, &value);
-}
 
 void write_time_series(H5::Group g, const hydro::TimeSeries& ts, double t0) {
   write_vector(g, "t", ts.t);
@@ -119,10 +82,11 @@ void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out)
   write_vector(g, "mode_k", k);
   write_vector(g, "clustering_rate", clustering);
   write_vector(g, "shear_rate", shear);
-  attribute(g, "t0", hydro::haff_time_scale(p));
-  attribute(g, "unstable_modes", double(out.unstable_modes));
-  attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));
-  attribute(g, "inertia_tau", out.inertia_tau.value_or(std::numeric_limits<double>::quiet_NaN()));
+  write_attribute(g, "t0", hydro::haff_time_scale(p));
+  write_attribute(g, "unstable_modes", double(out.unstable_modes));
+  write_attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));
+  write_attribute(g, "inertia_tau",
+                  out.inertia_tau.value_or(std::numeric_limits<double>::quiet_NaN()));
 }
 
 void write_convergence(H5::Group g, const hydro::ConvergenceStudy& c) {
@@ -132,11 +96,11 @@ void write_convergence(H5::Group g, const hydro::ConvergenceStudy& c) {
   write_vector(g, "error_v", c.error_v);
   write_vector(g, "error_n", c.error_n);
   write_vector(g, "error_T", c.error_T);
-  attribute(g, "t", c.t);
-  attribute(g, "order_x", c.order_x.back());
-  attribute(g, "order_v", c.order_v.back());
-  attribute(g, "order_n", c.order_n.back());
-  attribute(g, "order_T", c.order_T.back());
+  write_attribute(g, "t", c.t);
+  write_attribute(g, "order_x", c.order_x.back());
+  write_attribute(g, "order_v", c.order_v.back());
+  write_attribute(g, "order_n", c.order_n.back());
+  write_attribute(g, "order_T", c.order_T.back());
 }
 
 }  // namespace
@@ -146,10 +110,10 @@ void write_results_file(const std::filesystem::path& file, const RunMetadata& me
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_TRUNC);
   H5::Group root = h5.openGroup("/");
-  attribute(root, "granvv_version", meta.version);
-  attribute(root, "case", meta.case_name);
-  attribute(root, "config_toml", meta.config_toml);
-  for (const auto& [key, value] : meta.config) attribute(root, key, value);
+  write_attribute(root, "granvv_version", meta.version);
+  write_attribute(root, "case", meta.case_name);
+  write_attribute(root, "config_toml", meta.config_toml);
+  for (const auto& [key, value] : meta.config) write_attribute(root, key, value);
 
   H5::Group hydro_group = h5.createGroup("/hydro");
   write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series,

@@ -3,14 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "app/json_numbers.hpp"
+
 namespace granvv::app {
 namespace {
 
 using nlohmann::json;
-
-json number_or_null(std::optional<double> v) {
-  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
-}
 
 // "10", "100", "1000", "1e6": the crossing densities as the contract spells them.
 std::string density_key(double level) {

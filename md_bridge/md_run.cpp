@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "md_bridge/disk_gas.hpp"
 #include "md_bridge/h5md_writer.hpp"
 #include "md_bridge/lammps_session.hpp"
 #include "md_bridge/moment_reduction.hpp"
@@ -66,23 +67,7 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
   // Local atom arrays (LAMMPS layout); null on a rank that holds no atoms.
   auto local_x = [&] { return lmp.nlocal() > 0 ? lmp.x()[0] : nullptr; };
   auto local_v = [&] { return lmp.nlocal() > 0 ? lmp.v()[0] : nullptr; };
-  auto num = [](double x) { return lammps_number(x); };
-  lmp.commands({"units lj", "dimension 2", "atom_style sphere", "atom_modify map array",
-                "boundary p p p", "comm_modify vel yes",
-                "region box block " + num(-0.5 * lx) + " " + num(0.5 * lx) + " " + num(-0.5 * ly) +
-                    " " + num(0.5 * ly) + " -0.5 0.5",
-                "create_box 1 box"});
-  AtomBatch atoms;
-  atoms.type.assign(sample.count(), 1);
-  atoms.x = sample.x;
-  atoms.v = sample.v;
-  atoms.diameter.assign(sample.count(), 1.0);
-  atoms.mass.assign(sample.count(), 1.0);
-  lmp.create_atoms(atoms);
-  // Neighbour skin: a few contact overlaps' worth of travel per rebuild check.
-  lmp.commands({pair_style_command(contact), pair_coeff_command(), timestep_command(contact),
-                "neighbor 0.3 bin", "neigh_modify delay 0 every 1 check yes",
-                "fix integrate all nve/sphere disc", "fix plane all enforce2d"});
+  set_up_disk_gas(lmp, lx, ly, sample, contact);
 
   // Particle output in H5MD layout (rank 0 writes; gathering is collective).
   std::unique_ptr<H5mdWriter> h5md;

@@ -10,6 +10,7 @@
 #include "hydro/initial_conditions.hpp"
 #include "md_bridge/coarse_grainer.hpp"
 #include "md_bridge/contact_model.hpp"
+#include "md_bridge/disk_gas.hpp"
 #include "md_bridge/lammps_session.hpp"
 #include "md_bridge/particle_sampler.hpp"
 
@@ -26,25 +27,10 @@ TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
   const int bins = 25;
 
   LammpsSession lmp;
-  auto num = [](double x) { return lammps_number(x); };
-  lmp.commands({"units lj", "dimension 2", "atom_style sphere", "atom_modify map array",
-                "boundary p p p", "comm_modify vel yes",
-                "region box block " + num(-0.5 * lx) + " " + num(0.5 * lx) + " " + num(-0.5 * ly) +
-                    " " + num(0.5 * ly) + " -0.5 0.5",
-                "create_box 1 box"});
-  AtomBatch atoms;
-  atoms.type.assign(sample.count(), 1);
-  atoms.x = sample.x;
-  atoms.v = sample.v;
-  atoms.diameter.assign(sample.count(), 1.0);
-  atoms.mass.assign(sample.count(), 1.0);
-  lmp.create_atoms(atoms);
   ContactSpec c;
   c.restitution = 0.9;
-  const ContactModel model = make_contact_model(c);
-  lmp.commands({pair_style_command(model), pair_coeff_command(), timestep_command(model),
-                "neighbor 0.3 bin", "neigh_modify delay 0 every 1 check yes",
-                "fix integrate all nve/sphere disc", "fix plane all enforce2d"});
+  set_up_disk_gas(lmp, lx, ly, sample, make_contact_model(c));
+  auto num = [](double x) { return lammps_number(x); };
   lmp.run(500, true);  // collisions happen; atoms move, some across the periodic boundary
   lmp.commands({"compute cc all chunk/atom bin/1d x lower " + num(lx / bins) + " units box",
                 "compute tc all temp/chunk cc temp com yes", "compute vc all vcm/chunk cc",

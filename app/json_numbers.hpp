@@ -1,0 +1,13 @@
+#pragma once
+// summary.json convention (DESIGN.md §3): numbers are numbers, absent results are null.
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+namespace granvv::app {
+
+inline nlohmann::json number_or_null(std::optional<double> v) {
+  return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+}  // namespace granvv::app
