@@ -592,8 +592,9 @@ def plot(res, path):
     a = ax[0, 0]
     bars = a.bar(range(len(vals)), np.array(vals) / 1e6, color=colors)
     for i, (b, v, k) in enumerate(zip(bars, vals, keys)):
-        a.text(b.get_x() + b.get_width() / 2, v / 1e6, f"{v / 1e6:.1f}", ha="center", va="bottom",
-               fontsize=8)
+        top = max(v, r[k].get("max", v))
+        a.text(b.get_x() + b.get_width() / 2, top / 1e6 + 0.5, f"{v / 1e6:.1f}", ha="center",
+               va="bottom", fontsize=8)
         if "min" in r[k]:
             a.plot([i, i], [r[k]["min"] / 1e6, r[k]["max"] / 1e6], c="k", lw=1)
     a.axhline(0.95 * r["lammps_process"]["median"] / 1e6, ls="--", c="k", lw=0.8,
@@ -643,8 +644,8 @@ def plot(res, path):
         a.text(b.get_x() + b.get_width() / 2, v, f"{v:.2f} s", ha="center", va="bottom")
     st = p3["statistics"]
     a.set_xticks([0, 1])
-    a.set_xticklabels([f"1 rank\nt0 = {st['haff_t0_measured'][0]:.1f} ± {st['haff_t0_measured_error'][0]:.1f}",
-                       f"{k} ranks\nt0 = {st['haff_t0_measured'][1]:.1f} ± {st['haff_t0_measured_error'][1]:.1f}"])
+    a.set_xticklabels([f"1 rank\nt0 = {st['haff_t0_measured'][0]:.3f} ± {st['haff_t0_measured_error'][0]:.3f}",
+                       f"{k} ranks\nt0 = {st['haff_t0_measured'][1]:.3f} ± {st['haff_t0_measured_error'][1]:.3f}"])
     a.set_ylabel("md.wall_seconds")
     a.set_title(f"(d) MPI, {p1['particles']} disks: speed-up {p3['speedup']['md_wall']:.2f}× "
                 f"(LAMMPS loops {p3['speedup']['lammps_loops']:.2f}×)", fontsize=10)
@@ -701,7 +702,7 @@ def markdown(res):
          f"(sampling, restitution calibration). Outside `md.wall_seconds` the `granvv` process spends "
          f"{rel['bridge_process_minus_md_wall_seconds']:.2f} s (start-up, HDF5/JSON output); bare `lmp` "
          f"{rel['lammps_process_minus_loop_seconds']:.2f} s outside its loop (start-up, read_data, setup).",
-         f"- Target: bridge within 5 % of bare LAMMPS.",
+         "- Target: bridge within 5 % of bare LAMMPS.",
          f"- Physics check: T(end)/T(0) = {p1['physics_check']['bridge_T_ratio_long']:.4f} (bridge), "
          f"{p1['physics_check']['lammps_T_ratio_long']:.4f} (lmp), Haff "
          f"{p1['physics_check']['haff_T_ratio_theory']:.4f}.", "",
