@@ -130,6 +130,23 @@ const std::vector<KeySpec>& case_schema() {
        "lower kn and raise dt as the gas cools, restitution fixed"},
       {"md.snapshot_interval", kReal, 0.0, non_negative(),
        "H5MD particle snapshots every this much MD time; 0 = none"},
+      {"md.time_unit", kString, "md", one_of({"md", "haff"}),
+       "unit of md.t_end, md.sample_interval and md.output_times: MD time (sigma sqrt(m/T0)) "
+       "or the kinetic-theory Haff time t0 with chi(phi) (same cooling depth for every r)"},
+
+      // [compare]: hydro and coarse-grained particles side by side (needs md.enabled). The
+      // compared times are md.output_times; the hydro runs to md.t_end (both in scaled units).
+      {"compare.enabled", kBoolean, false, any_value(),
+       "run hydro and MD side by side and compare the fields"},
+      {"compare.hydro_initial", kString, "md", one_of({"md", "case"}),
+       "hydro start: the MD's coarse-grained t = 0 fields (ensemble mean), or the case's "
+       "initial fields as given to the MD"},
+      {"compare.sigmas", kReal, 3.0, positive(),
+       "a bin agrees when |hydro - MD| < sigmas standard errors of the MD mean"},
+      {"compare.agreement_fraction", kReal, 0.95, open_closed(0, 1),
+       "a field agrees at a time when at least this fraction of its bins agree"},
+      {"compare.density_modes", kInteger, 0, at_least(0),
+       "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
   };
   return rows;
 }
@@ -193,6 +210,38 @@ CrossCheck times_within_run(std::string times_key, std::string end_key) {
   return check;
 }
 
+// The [compare] table needs the particle engine and takes its times from it.
+CrossCheck comparison_is_possible() {
+  CrossCheck check;
+  check.rule = "compare.enabled needs md.enabled, md.output_times from 0, no hydro.output_times";
+  check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
+    if (!c.boolean("compare.enabled")) return std::nullopt;
+    if (!c.boolean("md.enabled")) {
+      return CrossViolation{"compare.enabled",
+                            "needs md.enabled = true " + from(c, "md.enabled") +
+                                ": a comparison runs both engines"};
+    }
+    if (!c.reals("hydro.output_times").empty()) {
+      return CrossViolation{"hydro.output_times",
+                            "must be empty when compare.enabled: the compared times are "
+                            "md.output_times, converted to the hydro's units"};
+    }
+    const auto times = c.reals("md.output_times");
+    if (times.size() < 2) {
+      return CrossViolation{"md.output_times",
+                            "needs at least two snapshot times for a comparison, the first 0"};
+    }
+    if (c.string("compare.hydro_initial") == "md" && times.front() != 0.0) {
+      return CrossViolation{"md.output_times",
+                            "must start at 0 when compare.hydro_initial = \"md\" " +
+                                from(c, "compare.hydro_initial") +
+                                ": the hydro starts from the MD's t = 0 fields"};
+    }
+    return std::nullopt;
+  };
+  return check;
+}
+
 // A smooth coarse-graining kernel needs a width.
 CrossCheck smooth_kernel_has_width() {
   CrossCheck check;
@@ -213,6 +262,7 @@ const std::vector<CrossCheck>& case_cross_checks() {
       times_within_run("hydro.output_times", "hydro.t_end"),
       times_within_run("md.output_times", "md.t_end"),
       smooth_kernel_has_width(),
+      comparison_is_possible(),
       strictly_less("analysis.tau_fit_min_density", "analysis.tau_fit_max_density"),
       strictly_less("analysis.profile_fit_x_min", "analysis.profile_fit_x_max"),
       // convergence.cells (strictly increasing, each >= 4) is a per-key constraint above.

@@ -16,6 +16,9 @@ namespace granvv::app {
 struct HydroScene {
   hydro::Physics physics;
   hydro::InitialParameters initial;
+  // Fields to start from instead of initial.type's generator: in a comparison, the particles'
+  // own coarse-grained t = 0 fields (app/compare_scene.hpp).
+  std::optional<hydro::InitialFields> given_fields;
   int cells = 0;
   double node_offset = 0.5;
   bool transverse = false;

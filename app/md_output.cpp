@@ -11,29 +11,17 @@ namespace {
 
 using nlohmann::json;
 
-// Mean and standard error over ensemble members of one field of every snapshot.
-void ensemble_field(const MdOutcome& out, const std::string& name,
-                    std::vector<double> md::FieldProfile::*field, H5::Group& g) {
-  const auto& first = out.runs.front().snapshots;
+// One field of every snapshot as a (snapshots x bins) matrix: mean and standard error.
+void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome& out,
+                          compare::EnsembleStatistics EnsembleSnapshot::*field) {
   std::vector<double> mean, err;
-  for (size_t s = 0; s < first.size(); ++s) {
-    const size_t bins = (first[s].fields.*field).size();
-    for (size_t b = 0; b < bins; ++b) {
-      double sum = 0, sum2 = 0;
-      int k = 0;
-      for (const auto& run : out.runs) {
-        if (s >= run.snapshots.size()) continue;
-        const double x = (run.snapshots[s].fields.*field)[b];
-        if (!std::isfinite(x)) continue;
-        sum += x, sum2 += x * x, ++k;
-      }
-      const double m = k ? sum / k : std::nan("");
-      mean.push_back(m);
-      err.push_back(k > 1 ? std::sqrt(std::max(0.0, sum2 / k - m * m) / (k - 1)) : std::nan(""));
-    }
+  for (const auto& s : out.snapshots) {
+    const auto& f = s.*field;
+    mean.insert(mean.end(), f.mean.begin(), f.mean.end());
+    err.insert(err.end(), f.standard_error.begin(), f.standard_error.end());
   }
-  write_matrix(g, name, mean, first.size());
-  write_matrix(g, name + "_stderr", err, first.size());
+  write_matrix(g, name, mean, out.snapshots.size());
+  write_matrix(g, name + "_stderr", err, out.snapshots.size());
 }
 
 }  // namespace
@@ -115,8 +103,8 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   H5::Group ts = h5.createGroup("/md/timeseries");
   const auto& base = out.runs.front().series;
   write_vector(ts, "t", base.t);
-  write_vector(ts, "T_mean", out.T_mean);
-  write_vector(ts, "T_stderr", out.T_stderr);
+  write_vector(ts, "T_mean", out.T.mean);
+  write_vector(ts, "T_stderr", out.T.standard_error);
   const hsize_t members = out.runs.size();
   auto stack = [&](std::vector<double> md::MdSeries::*member) {
     std::vector<double> all;
@@ -132,6 +120,8 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   write_matrix(ts, "energy_kinetic_x", stack(&md::MdSeries::energy_kinetic_x), members);
   write_matrix(ts, "energy_kinetic_y", stack(&md::MdSeries::energy_kinetic_y), members);
   write_matrix(ts, "energy_total", stack(&md::MdSeries::energy_total), members);
+  write_matrix(ts, "kinetic_noise_x", stack(&md::MdSeries::kinetic_noise_x), members);
+  write_matrix(ts, "kinetic_noise_y", stack(&md::MdSeries::kinetic_noise_y), members);
   write_matrix(ts, "momentum_x", stack(&md::MdSeries::momentum_x), members);
   write_matrix(ts, "kn", stack(&md::MdSeries::kn), members);
   write_matrix(ts, "dt", stack(&md::MdSeries::dt), members);
@@ -147,14 +137,15 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
 
   H5::Group fields = h5.createGroup("/md/fields");
   std::vector<double> times;
-  for (const auto& s : out.runs.front().snapshots) times.push_back(s.t);
+  for (const auto& s : out.snapshots) times.push_back(s.t);
   write_vector(fields, "t", times);
   if (!times.empty()) {
-    write_vector(fields, "x", out.runs.front().snapshots.front().fields.x);
-    ensemble_field(out, "n", &md::FieldProfile::n, fields);
-    ensemble_field(out, "v_x", &md::FieldProfile::v_x, fields);
-    ensemble_field(out, "v_y", &md::FieldProfile::v_y, fields);
-    ensemble_field(out, "T", &md::FieldProfile::T, fields);
+    write_vector(fields, "x", out.snapshots.front().x);
+    write_ensemble_field(fields, "n", out, &EnsembleSnapshot::n);
+    write_ensemble_field(fields, "v_x", out, &EnsembleSnapshot::v_x);
+    write_ensemble_field(fields, "v_y", out, &EnsembleSnapshot::v_y);
+    write_ensemble_field(fields, "T", out, &EnsembleSnapshot::T);
+    write_ensemble_field(fields, "count", out, &EnsembleSnapshot::count);
   }
 }
 

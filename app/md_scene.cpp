@@ -38,6 +38,12 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   spec.adaptive_stiffness = c.boolean("md.adaptive_stiffness");
   s.ensemble = static_cast<int>(c.integer("md.ensemble"));
   spec.snapshot_interval = c.real("md.snapshot_interval");
+  if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
+    const double t0 = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
+    spec.t_end *= t0;
+    spec.sample_interval *= t0;
+    for (double& t : spec.output_times) t *= t0;
+  }
   if (spec.sample_interval > spec.t_end) {
     throw ConfigError(c.origin("md.sample_interval") +
                       ": md.sample_interval = " + format_real(spec.sample_interval) +
@@ -69,6 +75,37 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   }
   return s;
 }
+
+namespace {
+
+std::vector<EnsembleSnapshot> ensemble_snapshots(const std::vector<md::MdRunResult>& runs) {
+  std::vector<EnsembleSnapshot> out;
+  const auto& first = runs.front().snapshots;
+  for (std::size_t s = 0; s < first.size(); ++s) {
+    auto stats = [&](std::vector<double> md::FieldProfile::*field) {
+      std::vector<std::vector<double>> members;
+      for (const auto& run : runs) {
+        if (s < run.snapshots.size()) members.push_back(run.snapshots[s].fields.*field);
+      }
+      return compare::ensemble_statistics(members);
+    };
+    EnsembleSnapshot e;
+    e.t = first[s].t;
+    e.x = first[s].fields.x;
+    e.n = stats(&md::FieldProfile::n);
+    e.v_x = stats(&md::FieldProfile::v_x);
+    e.v_y = stats(&md::FieldProfile::v_y);
+    e.T = stats(&md::FieldProfile::T);
+    e.count = stats(&md::FieldProfile::count);
+    e.v_x_snapshot_error = first[s].fields.v_x_stderr;
+    e.v_y_snapshot_error = first[s].fields.v_y_stderr;
+    e.T_snapshot_error = first[s].fields.T_stderr;
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+}  // namespace
 
 MdOutcome run_md_scene(const MdScene& scene,
                        const std::function<void(int, const md::MdProgress&)>& progress) {
@@ -112,20 +149,8 @@ MdOutcome run_md_scene(const MdScene& scene,
   }
   out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
   out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
-  const size_t samples = out.runs.front().series.T.size();
-  for (size_t i = 0; i < samples; ++i) {
-    double sum = 0, sum2 = 0;
-    int k = 0;
-    for (const auto& run : out.runs) {
-      if (i >= run.series.T.size()) continue;
-      sum += run.series.T[i], sum2 += run.series.T[i] * run.series.T[i], ++k;
-    }
-    const double mean = sum / k;
-    out.T_mean.push_back(mean);
-    out.T_stderr.push_back(
-        k > 1 ? std::sqrt(std::max(0.0, (sum2 / k - mean * mean)) * k / (k - 1) / k)
-              : std::nan(""));
-  }
+  out.T = compare::ensemble_statistics(Ts);
+  out.snapshots = ensemble_snapshots(out.runs);
   out.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -8,6 +8,7 @@
 
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
+#include "compare/ensemble_statistics.hpp"
 #include "compare/haff_fit.hpp"
 #include "md_bridge/md_run.hpp"
 
@@ -22,14 +23,24 @@ struct MdScene {
 // run (scene_problem, contact model, a profile too dense to place) before LAMMPS sees them.
 std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
 
+// The coarse-grained fields of one snapshot over the ensemble (MD units): mean and standard
+// error over the members (NaN with one member), and member 0's own single-snapshot errors.
+struct EnsembleSnapshot {
+  double t = 0.0;
+  std::vector<double> x;
+  compare::EnsembleStatistics n, v_x, v_y, T, count;
+  std::vector<double> v_x_snapshot_error, v_y_snapshot_error, T_snapshot_error;
+};
+
 struct MdOutcome {
   std::vector<md::MdRunResult> runs;
   double restitution_measured = 0.0;
   compare::HaffFit haff;
   double haff_t0_theory = 0.0, haff_t0_theory_dilute = 0.0;
   double wall_seconds = 0.0, atom_steps = 0.0;
-  // Ensemble mean and standard error of the temperature series (run 0's sample times).
-  std::vector<double> T_mean, T_stderr;
+  // Ensemble statistics of the temperature series (run 0's sample times) and of the fields.
+  compare::EnsembleStatistics T;
+  std::vector<EnsembleSnapshot> snapshots;
 };
 
 // Throws std::runtime_error if the restitution measured in LAMMPS misses the target by more

@@ -15,6 +15,8 @@
 
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
+#include "app/compare_output.hpp"
+#include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
 #include "app/md_output.hpp"
 #include "app/md_scene.hpp"
@@ -88,6 +90,31 @@ MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::l
   return out;
 }
 
+// The continuum engine with a progress line every progress_seconds and its throughput.
+HydroOutcome run_continuum(const HydroScene& scene, spdlog::logger& log) {
+  auto last = std::chrono::steady_clock::now();  // first line after progress_seconds
+  auto progress = [&](const hydro::Progress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last).count() < scene.progress_seconds) return;
+    last = now;
+    const double f = progress_fraction(p);
+    log.info("step {:>7} t={:<10.6g} dt={:<10.3e} ({}) n_max={:<10.4g} E={:<10.5g} ETA {:.1f} s",
+             p.step, p.t, p.dt, p.limited_by, p.n_max, p.energy, p.wall_seconds * (1 - f) / f);
+  };
+  HydroOutcome outcome = run_hydro_scene(scene, progress);
+  const auto& run = outcome.run;
+  log.info("hydro stopped: {} (status {}) at t = {:.6g} after {} steps ({} rejected)",
+           run.stop_reason, hydro::to_string(run.status), run.snapshots.back().state.t, run.steps,
+           run.rejected_steps);
+  log.info("hydro throughput: {:.3g} s wall, {:.3g} cell-steps/s", run.wall_seconds,
+           run.steps * double(scene.cells) / std::max(run.wall_seconds, 1e-12));
+  if (outcome.singularity && run.status == hydro::RunStatus::singularity) {
+    log.info("singularity time tau = {:.6g} from 1/n_max over n in [{:.3g}, {:.3g}]",
+             outcome.singularity->tau, outcome.singularity->n_min, outcome.singularity->n_max);
+  }
+  return outcome;
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -95,11 +122,13 @@ int run_command(const RunOptions& options) {
   std::optional<CaseConfig> loaded;
   HydroScene scene;
   std::optional<MdScene> md_scene;
+  std::optional<CompareScene> compare_scene;
   try {
     const CaseSource source = locate_case(options.case_name);
     loaded = CaseConfig::from_string(source.text, source.origin, options.sets);
     scene = hydro_scene_from(*loaded);
     md_scene = md_scene_from(*loaded, scene);
+    compare_scene = compare_scene_from(*loaded);
   } catch (const ConfigError& e) {
     std::cerr << "granvv: error: " << e.what() << "\n";
     return 2;
@@ -140,27 +169,47 @@ int run_command(const RunOptions& options) {
       {"compare", nullptr}};
   int exit_code = 0;
   try {
-    auto last = std::chrono::steady_clock::now();  // first line after progress_seconds
-    auto progress = [&](const hydro::Progress& p) {
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - last).count() < scene.progress_seconds) return;
-      last = now;
-      const double f = progress_fraction(p);
-      log->info("step {:>7} t={:<10.6g} dt={:<10.3e} ({}) n_max={:<10.4g} E={:<10.5g} ETA {:.1f} s",
-                p.step, p.t, p.dt, p.limited_by, p.n_max, p.energy, p.wall_seconds * (1 - f) / f);
+    const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(),
+                           config.flattened()};
+    // The particle engine; the summary on disk says "failed" until it returns, because the
+    // Debian LAMMPS ends the process on any error inside a command (DESIGN.md §5).
+    auto run_particle_engine = [&]() {
+      summary["md"] = {{"status", "failed"}};
+      md_scene->spec.creator_version = GRANVV_VERSION;
+      md_scene->spec.log_file = writer ? (dir / "log.lammps").string() : "none";
+      summary["md"]["error"] =
+          "the process ended inside the particle run (see log.lammps and run.log); results.h5 "
+          "holds what was finished before it and particles*.h5 the particle frames written so "
+          "far";
+      const nlohmann::json status_so_far = summary["status"];
+      summary["status"] = "failed";
+      if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+      summary["status"] = status_so_far;
+      log->info("md: LAMMPS log in {}", md_scene->spec.log_file);
+      if (md_scene->spec.snapshot_interval > 0.0) {
+        md_scene->spec.h5md_path = (dir / "particles.h5").string();
+      }
+      return run_particles(*md_scene, scene.progress_seconds, *log);
     };
-    const HydroOutcome outcome = run_hydro_scene(scene, progress);
-    const auto& run = outcome.run;
-    log->info("hydro stopped: {} (status {}) at t = {:.6g} after {} steps ({} rejected)",
-              run.stop_reason, hydro::to_string(run.status), run.snapshots.back().state.t,
-              run.steps, run.rejected_steps);
-    log->info("hydro throughput: {:.3g} s wall, {:.3g} cell-steps/s", run.wall_seconds,
-              run.steps * double(scene.cells) / std::max(run.wall_seconds, 1e-12));
-    if (outcome.singularity && run.status == hydro::RunStatus::singularity) {
-      log->info("singularity time tau = {:.6g} from 1/n_max over n in [{:.3g}, {:.3g}]",
-                outcome.singularity->tau, outcome.singularity->n_min, outcome.singularity->n_max);
+
+    // In a comparison the particles run first: the hydro starts from their coarse-grained
+    // t = 0 fields (or the case's) and is sampled at their snapshot times.
+    std::optional<MdOutcome> md;
+    if (compare_scene) {
+      md = run_particle_engine();
+      const auto& sc = md_scene->spec.scene;
+      if (compare_scene->hydro_from_md) {
+        scene.given_fields = fields_from_snapshot(md->snapshots.front(), sc);
+        log->info("hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
+                  "members)",
+                  md_scene->spec.bins, md->runs.size());
+      }
+      align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->snapshots);
+      log->info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", scene.control.t_end,
+                scene.control.output_times.size());
     }
-    RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
+    const HydroOutcome outcome = run_continuum(scene, *log);
+    const auto& run = outcome.run;
     if (writer) write_results_file(dir / "results.h5", meta, scene, outcome);
     summary["hydro"] = hydro_summary(scene, outcome);
     summary["status"] = hydro::to_string(run.status);
@@ -169,27 +218,20 @@ int run_command(const RunOptions& options) {
       exit_code = 1;
     }
     if (md_scene) {
-      summary["md"] = {{"status", "failed"}};
-      md_scene->spec.creator_version = GRANVV_VERSION;
-      // The Debian LAMMPS ends the process on any error inside a command. Until the particle
-      // run returns, the summary on disk says so, the hydro results are already in results.h5,
-      // and LAMMPS' own log (with its error message) is in the output folder.
-      md_scene->spec.log_file = writer ? (dir / "log.lammps").string() : "none";
-      summary["md"]["error"] =
-          "the process ended inside the particle run (see log.lammps and run.log); results.h5 "
-          "holds the hydro results and particles*.h5 the particle frames written so far";
-      const nlohmann::json hydro_status = summary["status"];
-      summary["status"] = "failed";
-      if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
-      summary["status"] = hydro_status;
-      log->info("md: LAMMPS log in {}", md_scene->spec.log_file);
-      if (md_scene->spec.snapshot_interval > 0.0) {
-        md_scene->spec.h5md_path = (dir / "particles.h5").string();
-      }
-      const MdOutcome md = run_particles(*md_scene, scene.progress_seconds, *log);
-      if (writer) write_md_results(dir / "results.h5", *md_scene, md);
-      summary["md"] = md_summary(*md_scene, md);
-      if (summary["status"] == "ok") summary["status"] = md.runs.back().status;
+      if (!md) md = run_particle_engine();
+      if (writer) write_md_results(dir / "results.h5", *md_scene, *md);
+      summary["md"] = md_summary(*md_scene, *md);
+      if (summary["status"] == "ok") summary["status"] = md->runs.back().status;
+    }
+    if (compare_scene) {
+      const CompareOutcome compared =
+          compare_engines(*compare_scene, scene, outcome, *md_scene, *md);
+      if (writer) write_compare_results(dir / "results.h5", *compare_scene, *md_scene, compared);
+      summary["compare"] =
+          compare_summary(*compare_scene, scene, outcome, *md_scene, *md, compared);
+      log->info("compare: {}", compared.verdict);
+      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} atom-steps)",
+                run.wall_seconds, md->wall_seconds, md->atom_steps);
     }
   } catch (const std::exception& e) {
     log->error("run failed: {}", e.what());

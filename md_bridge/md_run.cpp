@@ -97,6 +97,8 @@ MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgr
     s.energy_thermal.push_back(e.thermal);
     s.energy_kinetic_x.push_back(e.kinetic_macro_x);
     s.energy_kinetic_y.push_back(e.kinetic_macro_y);
+    s.kinetic_noise_x.push_back(e.macro_noise_x);
+    s.kinetic_noise_y.push_back(e.macro_noise_y);
     s.energy_total.push_back(e.kinetic_total);
     s.momentum_x.push_back(e.momentum_x);
     s.momentum_y.push_back(e.momentum_y);

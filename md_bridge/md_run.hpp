@@ -44,6 +44,9 @@ struct MdRunSpec {
 struct MdSeries {
   std::vector<double> t, T, energy_thermal, energy_kinetic_x, energy_kinetic_y, energy_total,
       momentum_x, momentum_y, kn, dt;
+  // Expected flow energy that the sampling noise of the bin means puts into energy_kinetic_x/y
+  // (BoxEnergies::macro_noise_x/y): subtract it to see the macroscopic flow itself.
+  std::vector<double> kinetic_noise_x, kinetic_noise_y;
 };
 
 struct MdSnapshot {

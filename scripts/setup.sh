@@ -10,6 +10,7 @@ packages=(
   libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-h5py python3-jinja2
+  chromium chromium-driver  # the slow suite opens report.html in a real browser (scripts/check_report.py)
 )
 missing=()
 for p in "${packages[@]}"; do

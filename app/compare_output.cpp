@@ -1,0 +1,176 @@
+#include "app/compare_output.hpp"
+
+#include "app/hdf5_datasets.hpp"
+#include "app/json_numbers.hpp"
+
+namespace granvv::app {
+namespace {
+
+using nlohmann::json;
+
+json numbers(const std::vector<double>& v) {
+  json a = json::array();
+  for (double x : v) a.push_back(number_or_null(x));
+  return a;
+}
+
+std::vector<double> flatten(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> all;
+  for (const auto& r : rows) all.insert(all.end(), r.begin(), r.end());
+  return all;
+}
+
+void write_rows(H5::Group& g, const std::string& name,
+                const std::vector<std::vector<double>>& rows) {
+  if (!rows.empty()) write_matrix(g, name, flatten(rows), rows.size());
+}
+
+template <typename F>
+std::vector<double> per_time(const compare::FieldTrack& track, F member) {
+  std::vector<double> v;
+  for (const auto& d : track.at) v.push_back(d.*member);
+  return v;
+}
+
+}  // namespace
+
+json compare_summary(const CompareScene& scene, const HydroScene& hydro,
+                     const HydroOutcome& hydro_out, const MdScene& md, const MdOutcome& md_out,
+                     const CompareOutcome& out) {
+  const auto& sc = md.spec.scene;
+  json fields = json::object();
+  for (const auto& f : out.fields) {
+    using FD = compare::FieldDifference;
+    fields[f.name] = {
+        {"l1", numbers(per_time(f.track, &FD::l1))},
+        {"l2", numbers(per_time(f.track, &FD::l2))},
+        {"linf", numbers(per_time(f.track, &FD::linf))},
+        {"fraction_within", numbers(per_time(f.track, &FD::fraction_within))},
+        {"worst_z", numbers(per_time(f.track, &FD::worst_z))},
+        {"scale", numbers(per_time(f.track, &FD::scale))},
+        {"error_source", f.error_source},
+    };
+  }
+  const auto& run = hydro_out.run;
+  const double cell_steps = double(run.steps) * hydro.cells;
+  // The hydro's Haff time (paper: t0 = K / 4q, dilute, 1 - r^2 ~ 4q) in MD units.
+  const double t0_hydro = sc.md_time(hydro.physics.K / (4.0 * hydro.physics.q));
+  const auto& haff = md_out.haff;
+  return {
+      {"status", "ok"},
+      {"wall_seconds", run.wall_seconds + md_out.wall_seconds},
+      {"hydro_initial", scene.hydro_from_md ? "md" : "case"},
+      {"sigmas", scene.sigmas},
+      {"agreement_fraction", scene.agreement_fraction},
+      {"times", numbers(out.t)},
+      {"times_md", numbers([&] {
+         std::vector<double> t;
+         for (double s : out.t) t.push_back(sc.md_time(s));
+         return t;
+       }())},
+      {"fields", fields},
+      {"agreement_window", number_or_null(out.window.until)},
+      {"agreement_throughout", out.window.throughout},
+      {"first_field_to_leave",
+       out.window.first_out.empty() ? json(nullptr) : json(out.window.first_out)},
+      {"left_at", number_or_null(out.window.left_at)},
+      {"verdict", out.verdict},
+      {"signal_to_noise", number_or_null(out.signal_to_noise)},
+      {"haff",
+       {{"t0_measured", number_or_null(haff.t0)},
+        {"t0_measured_error", number_or_null(haff.t0_error)},
+        {"t0_theory_enskog", md_out.haff_t0_theory},
+        {"t0_theory_dilute", md_out.haff_t0_theory_dilute},
+        {"t0_hydro", t0_hydro},
+        {"deviation_enskog", number_or_null(haff.t0 / md_out.haff_t0_theory - 1.0)},
+        {"deviation_dilute", number_or_null(haff.t0 / md_out.haff_t0_theory_dilute - 1.0)},
+        {"deviation_hydro", number_or_null(t0_hydro / haff.t0 - 1.0)},
+        {"deviation_enskog_sigmas",
+         number_or_null((haff.t0 - md_out.haff_t0_theory) / haff.t0_error)}}},
+      {"cost",
+       {{"hydro",
+         {{"wall_seconds", run.wall_seconds},
+          {"cells", hydro.cells},
+          {"steps", run.steps},
+          {"cell_steps", cell_steps},
+          {"cell_steps_per_second", number_or_null(cell_steps / run.wall_seconds)}}},
+        {"md",
+         {{"wall_seconds", md_out.wall_seconds},
+          {"particles", sc.particles},
+          {"ensemble", md.ensemble},
+          {"atom_steps", md_out.atom_steps},
+          {"atom_steps_per_second", number_or_null(md_out.atom_steps / md_out.wall_seconds)}}},
+        {"md_to_hydro_wall_ratio", number_or_null(md_out.wall_seconds / run.wall_seconds)}}},
+      {"peak",
+       {{"hydro_n", numbers(out.hydro_n_peak)},
+        {"md_n", numbers(out.md_n_peak)},
+        {"md_n_error", numbers(out.md_n_peak_error)},
+        {"inertia_n", numbers(out.inertia_n_peak)}}},
+      {"density_modes", scene.density_modes},
+  };
+}
+
+void write_compare_results(const std::filesystem::path& file, const CompareScene& scene,
+                           const MdScene& md, const CompareOutcome& out) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
+  H5::Group g = h5.createGroup("/compare");
+  const auto& sc = md.spec.scene;
+  write_attribute(g, "sigmas", scene.sigmas);
+  write_attribute(g, "agreement_fraction", scene.agreement_fraction);
+  write_attribute(g, "hydro_initial", scene.hydro_from_md ? "md" : "case");
+  write_attribute(g, "agreement_window", out.window.until.value_or(std::nan("")));
+  write_attribute(g, "left_at", out.window.left_at.value_or(std::nan("")));
+  write_attribute(g, "first_field_to_leave", out.window.first_out);
+  write_attribute(g, "verdict", out.verdict);
+  write_attribute(g, "signal_to_noise", out.signal_to_noise);
+  write_attribute(g, "box_length", sc.box_length);
+  write_attribute(g, "particles", double(sc.particles));
+  write_vector(g, "t", out.t);
+  write_vector(g, "x", out.x);
+  write_vector(g, "collision_clock", out.collision_clock);
+
+  H5::Group fields = h5.createGroup("/compare/fields");
+  for (const auto& f : out.fields) {
+    H5::Group fg = fields.createGroup(f.name);
+    write_attribute(fg, "error_source", f.error_source);
+    write_rows(fg, "hydro", f.hydro);
+    write_rows(fg, "md", f.md);
+    write_rows(fg, "md_error", f.md_error);
+    using FD = compare::FieldDifference;
+    write_vector(fg, "l1", per_time(f.track, &FD::l1));
+    write_vector(fg, "l2", per_time(f.track, &FD::l2));
+    write_vector(fg, "linf", per_time(f.track, &FD::linf));
+    write_vector(fg, "fraction_within", per_time(f.track, &FD::fraction_within));
+    write_vector(fg, "worst_z", per_time(f.track, &FD::worst_z));
+    write_vector(fg, "scale", per_time(f.track, &FD::scale));
+  }
+  H5::Group peak = h5.createGroup("/compare/peak");
+  write_vector(peak, "hydro_n", out.hydro_n_peak);
+  write_vector(peak, "md_n", out.md_n_peak);
+  write_vector(peak, "md_n_error", out.md_n_peak_error);
+  write_vector(peak, "hydro_dvdx", out.hydro_dvdx_peak);
+  write_vector(peak, "md_dvdx", out.md_dvdx_peak);
+  write_vector(peak, "inertia_n", out.inertia_n_peak);
+  H5::Group energy = h5.createGroup("/compare/energy");
+  write_vector(energy, "hydro_thermal", out.hydro_energy_thermal);
+  write_vector(energy, "md_thermal", out.md_energy_thermal);
+  write_vector(energy, "hydro_kinetic", out.hydro_energy_kinetic);
+  write_vector(energy, "md_kinetic", out.md_energy_kinetic);
+  H5::Group inertia = h5.createGroup("/compare/inertia");
+  write_rows(inertia, "n", out.inertia_n);
+  write_rows(inertia, "v", out.inertia_v);
+  if (!out.theory_rate.empty()) {
+    H5::Group modes = h5.createGroup("/compare/modes");
+    std::vector<double> k;
+    for (std::size_t i = 1; i <= out.theory_rate.size(); ++i) k.push_back(double(i));
+    write_vector(modes, "k", k);
+    write_vector(modes, "theory_rate", out.theory_rate);
+    write_rows(modes, "hydro", out.hydro_modes);
+    write_rows(modes, "md", out.md_modes);
+    write_rows(modes, "md_error", out.md_modes_error);
+    write_rows(modes, "theory", out.theory_modes);
+  }
+}
+
+}  // namespace granvv::app

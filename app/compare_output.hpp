@@ -1,0 +1,19 @@
+#pragma once
+// A comparison's outputs: the `compare` block of summary.json and the /compare group of
+// results.h5 (read by scripts/report.py).
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "app/compare_scene.hpp"
+
+namespace granvv::app {
+
+nlohmann::json compare_summary(const CompareScene& scene, const HydroScene& hydro,
+                               const HydroOutcome& hydro_out, const MdScene& md,
+                               const MdOutcome& md_out, const CompareOutcome& out);
+
+// Adds /compare to an existing results.h5.
+void write_compare_results(const std::filesystem::path& file, const CompareScene& scene,
+                           const MdScene& md, const CompareOutcome& out);
+
+}  // namespace granvv::app

@@ -1,0 +1,377 @@
+#include "app/compare_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "compare/ensemble_statistics.hpp"
+#include "hydro/flow_by_inertia.hpp"
+#include "hydro/haff.hpp"
+#include "hydro/linear_stability.hpp"
+
+namespace granvv::app {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Periodic, piecewise-linear interpolation through values at the centres of equal bins of
+// [-1/2, 1/2).
+std::function<double(double)> periodic_interpolant(std::vector<double> values) {
+  return [values = std::move(values)](double x) {
+    const int bins = static_cast<int>(values.size());
+    const double u = (x + 0.5) * bins - 0.5;
+    const double lower = std::floor(u);
+    const double f = u - lower;
+    const int i = ((static_cast<long long>(lower) % bins) + bins) % bins;
+    return (1.0 - f) * values[i] + f * values[(i + 1) % bins];
+  };
+}
+
+// Density Fourier amplitude |sum_b f_b dx exp(-2 pi i k x_b)| of a field on equal bins.
+std::complex<double> fourier_coefficient(const std::vector<double>& f,
+                                         const std::vector<double>& x, int k) {
+  std::complex<double> c = 0.0;
+  const double dx = 1.0 / f.size();
+  for (std::size_t b = 0; b < f.size(); ++b) {
+    c += f[b] * dx * std::exp(std::complex<double>(0.0, -2.0 * M_PI * k * x[b]));
+  }
+  return c;
+}
+
+// Mass-weighted mean of g over the bins: sum n g / sum n.
+double mass_mean(const std::vector<double>& n, const std::vector<double>& g) {
+  double m = 0.0, s = 0.0;
+  for (std::size_t b = 0; b < n.size(); ++b) {
+    if (std::isfinite(n[b]) && std::isfinite(g[b])) m += n[b], s += n[b] * g[b];
+  }
+  return s / m;
+}
+
+std::size_t argmax(const std::vector<double>& v) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    if (v[i] > v[best]) best = i;
+  }
+  return best;
+}
+
+// Centred difference of v at bin b (periodic), in scaled units.
+double centred_slope(const std::vector<double>& v, std::size_t b) {
+  const std::size_t n = v.size();
+  return (v[(b + 1) % n] - v[(b + n - 1) % n]) * n / 2.0;
+}
+
+// The errors of the ensemble mean of one field, per bin. A single snapshot's error model
+// (md_bridge/coarse_grainer.hpp: sqrt(T/N) for v, T/sqrt(N-1) for T; Poisson n/sqrt(N) for n)
+// gives the shape over the bins; with k >= 2 members its level is calibrated by the ensemble
+// itself: the model variance is scaled by the mean over bins of (observed ensemble variance /
+// model variance), a ratio with bins (k - 1) degrees of freedom. This keeps the error of each
+// bin from resting on k - 1 degrees of freedom alone (with k = 3 a t-distribution puts only 90 %
+// of pure noise within 3 standard errors), and lets correlations the model ignores (density
+// fluctuations with S(0) != 1, hydrodynamic modes) enter through the ensemble.
+std::vector<double> mean_error(const std::vector<double>& model_one_member,
+                               const compare::EnsembleStatistics& stats, std::string& source) {
+  const std::size_t bins = model_one_member.size();
+  double ratio_sum = 0.0;
+  int ratio_count = 0, members = 1;
+  for (std::size_t b = 0; b < bins; ++b) {
+    members = std::max(members, stats.members[b]);
+    const double k = stats.members[b], se = stats.standard_error[b], m = model_one_member[b];
+    if (k >= 2 && std::isfinite(se) && m > 0.0 && std::isfinite(m)) {
+      ratio_sum += k * se * se / (m * m);
+      ++ratio_count;
+    }
+  }
+  const double ratio = ratio_count > 0 ? ratio_sum / ratio_count : 1.0;
+  std::vector<double> err(bins);
+  for (std::size_t b = 0; b < bins; ++b) {
+    err[b] = model_one_member[b] * std::sqrt(ratio / std::max(1, stats.members[b]));
+  }
+  std::ostringstream s;
+  if (ratio_count > 0) {
+    s << "ensemble of " << members << " (model error x " << std::sqrt(ratio) << ")";
+  } else {
+    s << "single-snapshot model";
+  }
+  source = s.str();
+  return err;
+}
+
+}  // namespace
+
+std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
+  if (!c.boolean("compare.enabled")) return std::nullopt;
+  CompareScene s;
+  s.hydro_from_md = c.string("compare.hydro_initial") == "md";
+  s.sigmas = c.real("compare.sigmas");
+  s.agreement_fraction = c.real("compare.agreement_fraction");
+  s.density_modes = static_cast<int>(c.integer("compare.density_modes"));
+  const long long bins = c.integer("md.bins");
+  if (2LL * s.density_modes >= bins) {
+    throw ConfigError(c.origin("compare.density_modes") +
+                      ": compare.density_modes = " + std::to_string(s.density_modes) +
+                      ": must be < md.bins / 2 = " + std::to_string(bins / 2) +
+                      " (the Nyquist mode of the bins)");
+  }
+  if (c.string("md.kernel") != "bin") {
+    throw ConfigError(c.origin("md.kernel") + ": md.kernel = \"" + c.string("md.kernel") +
+                      "\": a comparison bins the hydro like the particles, so it needs "
+                      "md.kernel = \"bin\"");
+  }
+  return s;
+}
+
+void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
+                         const std::vector<EnsembleSnapshot>& md_snapshots) {
+  auto& ctl = hydro.control;
+  ctl.t_end = scene.scaled_time(md_t_end);
+  ctl.output_times.clear();
+  for (const auto& s : md_snapshots) {
+    const double t = scene.scaled_time(s.t);
+    if (t > 0.0 && (ctl.output_times.empty() || t > ctl.output_times.back())) {
+      ctl.output_times.push_back(t);
+    }
+  }
+  if (!ctl.output_times.empty()) ctl.t_end = std::max(ctl.t_end, ctl.output_times.back());
+}
+
+hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& s,
+                                          const md::ParticleScene& scene) {
+  const double n0 = scene.number_density();
+  std::vector<double> n, vx, vy, T;
+  for (std::size_t b = 0; b < s.x.size(); ++b) {
+    const double values[] = {s.n.mean[b], s.v_x.mean[b], s.v_y.mean[b], s.T.mean[b]};
+    for (double v : values) {
+      if (!std::isfinite(v)) {
+        throw std::runtime_error("the MD's coarse-grained fields at t = " +
+                                 std::to_string(s.t) + " have an empty bin (" +
+                                 std::to_string(b) + "); use fewer md.bins to start the hydro "
+                                 "from them");
+      }
+    }
+    n.push_back(s.n.mean[b] / n0), vx.push_back(s.v_x.mean[b]), vy.push_back(s.v_y.mean[b]);
+    T.push_back(s.T.mean[b]);
+  }
+  hydro::InitialFields f;
+  f.n = periodic_interpolant(n);
+  f.v = periodic_interpolant(vx);
+  f.vy = periodic_interpolant(vy);
+  f.T = periodic_interpolant(T);
+  return f;
+}
+
+CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydro,
+                               const HydroOutcome& hydro_out, const MdScene& md,
+                               const MdOutcome& md_out) {
+  const auto& sc = md.spec.scene;
+  const double n0 = sc.number_density();
+  const int bins = md.spec.bins;
+  const int members = static_cast<int>(md_out.runs.size());
+  CompareOutcome out;
+  for (int b = 0; b < bins; ++b) out.x.push_back(-0.5 + (b + 0.5) / bins);
+
+  // The output times both engines reached: each MD snapshot against the hydro snapshot taken
+  // at the same scaled time.
+  std::vector<std::pair<const EnsembleSnapshot*, const hydro::LagrangianState*>> pairs;
+  for (const auto& m : md_out.snapshots) {
+    const double t = sc.scaled_time(m.t);
+    for (const auto& h : hydro_out.run.snapshots) {
+      if (std::abs(h.state.t - t) <= 1e-9 * std::max(1.0, t)) {
+        pairs.emplace_back(&m, &h.state);
+        break;
+      }
+    }
+  }
+
+  std::vector<std::string> names = {"n", "v_x", "T"};
+  if (hydro.transverse) names.insert(names.begin() + 2, "v_y");
+  for (const auto& name : names) {
+    ComparedField f;
+    f.name = name;
+    f.track.field = name;
+    out.fields.push_back(std::move(f));
+  }
+
+  const hydro::InitialFields case_fields =
+      hydro::make_initial_fields(hydro.initial, hydro.physics);
+  const bool smooth = hydro.initial.type == "single_mode" && hydro.initial.velocity_amplitude != 0;
+  const double inertia_tau =
+      smooth ? hydro::FlowByInertia::single_mode(hydro.initial.velocity_amplitude,
+                                                 hydro.initial.mode)
+                   .singularity_time()
+             : kNaN;
+  const double t0 = hydro::haff_time_scale(hydro.physics);
+
+  for (const auto& [m, h] : pairs) {
+    const double t = sc.scaled_time(m->t);
+    out.t.push_back(t);
+    const compare::BinnedFields hb = compare::bin_lagrangian_state(*h, bins);
+    // MD means in scaled units, and their errors.
+    std::vector<double> md_n, md_T, model_n, model_vx, model_vy, model_T;
+    for (int b = 0; b < bins; ++b) {
+      md_n.push_back(m->n.mean[b] / n0);
+      md_T.push_back(m->T.mean[b]);
+      const double count = m->count.mean[b];
+      // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
+      // ensemble calibration below corrects the level), in MD units like the ensemble's.
+      model_n.push_back(count > 0 ? m->n.mean[b] / std::sqrt(count) : kNaN);
+      model_vx.push_back(m->v_x_snapshot_error[b]);
+      model_vy.push_back(m->v_y_snapshot_error[b]);
+      model_T.push_back(m->T_snapshot_error[b]);
+    }
+    const double T_bar = mass_mean(md_n, md_T);
+    for (auto& f : out.fields) {
+      std::vector<double> hv, mv, err;
+      double scale = 1.0;  // n: the mean density n0
+      if (f.name == "n") {
+        hv = hb.n, mv = md_n, err = mean_error(model_n, m->n, f.error_source);
+        for (double& e : err) e /= n0;
+      } else if (f.name == "v_x") {
+        hv = hb.v_x, mv = m->v_x.mean, err = mean_error(model_vx, m->v_x, f.error_source);
+        scale = std::sqrt(T_bar);  // the thermal speed at this time
+      } else if (f.name == "v_y") {
+        hv = hb.v_y, mv = m->v_y.mean, err = mean_error(model_vy, m->v_y, f.error_source);
+        scale = std::sqrt(T_bar);
+      } else {
+        hv = hb.T, mv = md_T, err = mean_error(model_T, m->T, f.error_source);
+        scale = T_bar;  // the mean temperature at this time
+      }
+      f.track.at.push_back(compare::field_difference(hv, mv, err, scale, scene.sigmas));
+      f.hydro.push_back(hv), f.md.push_back(mv), f.md_error.push_back(err);
+    }
+
+    // Peak density and the velocity gradient there, on the bins.
+    const std::size_t hp = argmax(hb.n), mp = argmax(md_n);
+    out.hydro_n_peak.push_back(hb.n[hp]);
+    out.md_n_peak.push_back(md_n[mp]);
+    out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
+    out.hydro_dvdx_peak.push_back(std::abs(centred_slope(hb.v_x, hp)));
+    out.md_dvdx_peak.push_back(std::abs(centred_slope(m->v_x.mean, mp)));
+    // Energies per particle from the bins. The MD flow energy has the sampling noise of the bin
+    // means removed: E|v_b|^2 = v^2 + 2 T_b / N_b per bin for a mean over N_b particles
+    // (divided by the members for the ensemble mean).
+    double eth_h = 0, ekin_h = 0, eth_m = 0, ekin_m = 0, mass_m = 0;
+    for (int b = 0; b < bins; ++b) {
+      const double dx = 1.0 / bins;
+      eth_h += hb.n[b] * hb.T[b] * dx;
+      ekin_h += 0.5 * hb.n[b] * (hb.v_x[b] * hb.v_x[b] + hb.v_y[b] * hb.v_y[b]) * dx;
+      const double vx = m->v_x.mean[b], vy = m->v_y.mean[b], count = m->count.mean[b];
+      if (!std::isfinite(vx) || !std::isfinite(md_T[b])) continue;
+      const double noise = count > 0 ? 2.0 * md_T[b] / (count * members) : 0.0;
+      mass_m += md_n[b] * dx;
+      eth_m += md_n[b] * md_T[b] * dx;
+      ekin_m += 0.5 * md_n[b] * (vx * vx + vy * vy - noise) * dx;
+    }
+    out.hydro_energy_thermal.push_back(eth_h);
+    out.hydro_energy_kinetic.push_back(ekin_h);
+    out.md_energy_thermal.push_back(eth_m / mass_m);
+    out.md_energy_kinetic.push_back(ekin_m / mass_m);
+
+    // Flow by inertia on the same bins, before its singularity.
+    if (smooth && t < 0.999 * inertia_tau) {
+      const auto inertia = compare::bin_lagrangian_state(
+          compare::flow_by_inertia_state(case_fields, t, 100 * bins), bins);
+      out.inertia_n.push_back(inertia.n);
+      out.inertia_v.push_back(inertia.v_x);
+      out.inertia_n_peak.push_back(*std::max_element(inertia.n.begin(), inertia.n.end()));
+    } else {
+      out.inertia_n.emplace_back(bins, kNaN);
+      out.inertia_v.emplace_back(bins, kNaN);
+      out.inertia_n_peak.push_back(kNaN);
+    }
+    out.collision_clock.push_back(hydro::collision_clock(t, t0));
+  }
+
+  // Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
+  // noise-born modes differ between seeds, so the mean field would average them away), and the
+  // linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with
+  // exp(A s) (hydro/linear_stability.hpp), rms over members.
+  if (scene.density_modes > 0 && !pairs.empty()) {
+    for (int k = 1; k <= scene.density_modes; ++k) {
+      out.theory_rate.push_back(hydro::hcs_modes(hydro.physics, k)[0].rate.real());
+    }
+    std::vector<std::vector<Eigen::Vector3cd>> initial(members);
+    for (int r = 0; r < members; ++r) {
+      const auto& f = md_out.runs[r].snapshots.front().fields;
+      std::vector<double> nu, w, theta;
+      const double T_mean = mass_mean(f.n, f.T);
+      for (int b = 0; b < bins; ++b) {
+        nu.push_back(f.n[b] / n0 - 1.0);
+        w.push_back(f.v_x[b] / std::sqrt(T_mean));
+        theta.push_back(f.T[b] / T_mean - 1.0);
+      }
+      for (int k = 1; k <= scene.density_modes; ++k) {
+        initial[r].push_back({fourier_coefficient(nu, out.x, k), fourier_coefficient(w, out.x, k),
+                              fourier_coefficient(theta, out.x, k)});
+      }
+    }
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto hb = compare::bin_lagrangian_state(*pairs[i].second, bins);
+      std::vector<double> hydro_row, md_row, md_err, theory_row;
+      const std::size_t s_index = pairs[i].first - md_out.snapshots.data();
+      for (int k = 1; k <= scene.density_modes; ++k) {
+        hydro_row.push_back(std::abs(fourier_coefficient(hb.n, out.x, k)));
+        std::vector<std::vector<double>> power;  // one |n_k|^2 per member
+        double theory2 = 0.0;
+        for (int r = 0; r < members; ++r) {
+          const auto& snaps = md_out.runs[r].snapshots;
+          if (s_index >= snaps.size()) continue;
+          std::vector<double> relative;
+          for (double n : snaps[s_index].fields.n) relative.push_back(n / n0);
+          power.push_back({std::norm(fourier_coefficient(relative, out.x, k))});
+          const Eigen::Vector3cd evolved = hydro::hcs_linear_evolution(
+              hydro.physics, k, initial[r][k - 1], out.collision_clock[i]);
+          theory2 += std::norm(evolved[0]);
+        }
+        // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
+        const auto st = compare::ensemble_statistics(power);
+        const double rms = std::sqrt(st.mean[0]);
+        md_row.push_back(rms);
+        md_err.push_back(rms > 0 ? 0.5 * st.standard_error[0] / rms : kNaN);
+        theory_row.push_back(std::sqrt(theory2 / members));
+      }
+      out.hydro_modes.push_back(hydro_row);
+      out.md_modes.push_back(md_row);
+      out.md_modes_error.push_back(md_err);
+      out.theory_modes.push_back(theory_row);
+    }
+  }
+
+  std::vector<compare::FieldTrack> tracks;
+  for (const auto& f : out.fields) tracks.push_back(f.track);
+  out.window = compare::agreement_window(out.t, tracks, scene.agreement_fraction);
+
+  // DESIGN.md §8: the thermal velocity noise on the bin scale against the imposed flow.
+  const double bin = sc.box_length / bins;
+  const double noise = 1.0 / std::sqrt(n0 * sc.box_width * bin);
+  double signal = 0.0;
+  for (int i = 0; i < 4096; ++i) {
+    signal = std::max(signal, std::abs(md.spec.fields.v(-0.5 + (i + 0.5) / 4096)));
+  }
+  out.signal_to_noise = signal / noise;
+
+  std::ostringstream v;
+  v.precision(4);
+  const double last = out.t.empty() ? kNaN : out.t.back();
+  if (out.window.throughout) {
+    v << "fields agree within " << scene.sigmas << " sigma at every compared time up to t = "
+      << last;
+  } else if (out.window.until) {
+    v << "fields agree within " << scene.sigmas << " sigma until t = " << *out.window.until
+      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at
+      << ")";
+  } else if (out.window.left_at) {
+    v << "fields differ beyond " << scene.sigmas << " sigma from the first compared time; "
+      << "worst: " << out.window.first_out;
+  } else {
+    v << "no common output time";
+  }
+  v << " [signal/noise " << out.signal_to_noise << "]";
+  out.verdict = v.str();
+  return out;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,73 @@
+#pragma once
+// A case's side-by-side part ([compare]): the hydro aligned with the particle run (same times,
+// optionally started from the particles' own coarse-grained t = 0 fields), and the comparison
+// of the two on the particles' bins, in the hydro's scaled units (DESIGN.md §4).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/case_config.hpp"
+#include "app/hydro_scene.hpp"
+#include "app/md_scene.hpp"
+#include "compare/binned_fields.hpp"
+#include "compare/field_metrics.hpp"
+
+namespace granvv::app {
+
+struct CompareScene {
+  bool hydro_from_md = true;
+  double sigmas = 3.0;
+  double agreement_fraction = 0.95;
+  int density_modes = 0;
+};
+
+// Reads [compare]; std::nullopt if compare.enabled is false.
+std::optional<CompareScene> compare_scene_from(const CaseConfig& config);
+
+// The hydro of a comparison runs to the particles' end time; its snapshots are taken at the
+// particles' actual snapshot times (which land on MD steps), all converted to scaled units.
+void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
+                         const std::vector<EnsembleSnapshot>& md_snapshots);
+
+// Continuous fields through the ensemble-mean bin values of one MD snapshot (scaled units),
+// periodic and piecewise linear between bin centres.
+hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& snapshot,
+                                          const md::ParticleScene& scene);
+
+// One compared field over the output times (rows) and bins (columns), scaled units.
+struct ComparedField {
+  std::string name;  // "n", "v_x", "v_y", "T"
+  std::vector<std::vector<double>> hydro, md, md_error;
+  compare::FieldTrack track;
+  std::string error_source;  // "ensemble" or "snapshot" (a single member)
+};
+
+struct CompareOutcome {
+  std::vector<double> t;  // scaled output times both engines reached
+  std::vector<double> x;  // bin centres, scaled
+  std::vector<ComparedField> fields;
+  compare::AgreementWindow window;
+  // Per output time, from the binned fields of both sides (per particle, scaled units):
+  // peak density, |dv/dx| at the peak (centred difference on the bins), thermal and flow energy.
+  std::vector<double> hydro_n_peak, md_n_peak, md_n_peak_error;
+  std::vector<double> hydro_dvdx_peak, md_dvdx_peak;
+  std::vector<double> hydro_energy_thermal, md_energy_thermal;
+  std::vector<double> hydro_energy_kinetic, md_energy_kinetic;
+  // Flow by inertia (paper Eq. 5) on the same bins, where the case's initial velocity is
+  // smooth and the time is before its singularity; NaN rows otherwise.
+  std::vector<std::vector<double>> inertia_n, inertia_v;
+  std::vector<double> inertia_n_peak;
+  // Density Fourier modes |n_k|, k = 1..density_modes (rows: times), and the linear theory's
+  // growth exponent Re lambda(k) (collision clock) of the fastest branch.
+  std::vector<std::vector<double>> hydro_modes, md_modes, md_modes_error, theory_modes;
+  std::vector<double> theory_rate;
+  std::vector<double> collision_clock;  // s(t) of Haff's law at each output time
+  double signal_to_noise = 0.0;
+  std::string verdict;
+};
+
+CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydro,
+                               const HydroOutcome& hydro_out, const MdScene& md,
+                               const MdOutcome& md_out);
+
+}  // namespace granvv::app
