@@ -61,7 +61,8 @@ const std::vector<KeySpec>& case_schema() {
 
       // [hydro]
       {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
-      {"hydro.t_end", kReal, 4.0, positive(), "end time of the hydro run"},
+      {"hydro.t_end", kReal, 4.0, positive(),
+       "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
       {"hydro.output_times", kReals, kEmpty, increasing(non_negative()),
        "times at which fields are written"},
       {"hydro.cfl", kReal, 2.0, open_closed(0, 20),
@@ -217,9 +218,8 @@ CrossCheck comparison_is_possible() {
   check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
     if (!c.boolean("compare.enabled")) return std::nullopt;
     if (!c.boolean("md.enabled")) {
-      return CrossViolation{"compare.enabled",
-                            "needs md.enabled = true " + from(c, "md.enabled") +
-                                ": a comparison runs both engines"};
+      return CrossViolation{"compare.enabled", "needs md.enabled = true " + from(c, "md.enabled") +
+                                                   ": a comparison runs both engines"};
     }
     if (!c.reals("hydro.output_times").empty()) {
       return CrossViolation{"hydro.output_times",

@@ -75,6 +75,7 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
        out.window.first_out.empty() ? json(nullptr) : json(out.window.first_out)},
       {"left_at", number_or_null(out.window.left_at)},
       {"verdict", out.verdict},
+      {"disagreement", out.disagreement},
       {"signal_to_noise", number_or_null(out.signal_to_noise)},
       {"haff",
        {{"t0_measured", number_or_null(haff.t0)},
@@ -123,6 +124,7 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
   write_attribute(g, "left_at", out.window.left_at.value_or(std::nan("")));
   write_attribute(g, "first_field_to_leave", out.window.first_out);
   write_attribute(g, "verdict", out.verdict);
+  write_attribute(g, "disagreement", out.disagreement);
   write_attribute(g, "signal_to_noise", out.signal_to_noise);
   write_attribute(g, "box_length", sc.box_length);
   write_attribute(g, "particles", double(sc.particles));

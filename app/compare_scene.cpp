@@ -31,8 +31,8 @@ std::function<double(double)> periodic_interpolant(std::vector<double> values) {
 }
 
 // Density Fourier amplitude |sum_b f_b dx exp(-2 pi i k x_b)| of a field on equal bins.
-std::complex<double> fourier_coefficient(const std::vector<double>& f,
-                                         const std::vector<double>& x, int k) {
+std::complex<double> fourier_coefficient(const std::vector<double>& f, const std::vector<double>& x,
+                                         int k) {
   std::complex<double> c = 0.0;
   const double dx = 1.0 / f.size();
   for (std::size_t b = 0; b < f.size(); ++b) {
@@ -146,9 +146,9 @@ hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& s,
     const double values[] = {s.n.mean[b], s.v_x.mean[b], s.v_y.mean[b], s.T.mean[b]};
     for (double v : values) {
       if (!std::isfinite(v)) {
-        throw std::runtime_error("the MD's coarse-grained fields at t = " +
-                                 std::to_string(s.t) + " have an empty bin (" +
-                                 std::to_string(b) + "); use fewer md.bins to start the hydro "
+        throw std::runtime_error("the MD's coarse-grained fields at t = " + std::to_string(s.t) +
+                                 " have an empty bin (" + std::to_string(b) +
+                                 "); use fewer md.bins to start the hydro "
                                  "from them");
       }
     }
@@ -195,14 +195,12 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     out.fields.push_back(std::move(f));
   }
 
-  const hydro::InitialFields case_fields =
-      hydro::make_initial_fields(hydro.initial, hydro.physics);
+  const hydro::InitialFields case_fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
   const bool smooth = hydro.initial.type == "single_mode" && hydro.initial.velocity_amplitude != 0;
-  const double inertia_tau =
-      smooth ? hydro::FlowByInertia::single_mode(hydro.initial.velocity_amplitude,
-                                                 hydro.initial.mode)
-                   .singularity_time()
-             : kNaN;
+  const double inertia_tau = smooth ? hydro::FlowByInertia::single_mode(
+                                          hydro.initial.velocity_amplitude, hydro.initial.mode)
+                                          .singularity_time()
+                                    : kNaN;
   const double t0 = hydro::haff_time_scale(hydro.physics);
 
   for (const auto& [m, h] : pairs) {
@@ -353,23 +351,33 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   }
   out.signal_to_noise = signal / noise;
 
+  constexpr double kClearSignal = 3.0;
+  out.disagreement = out.window.throughout                ? "none"
+                     : out.signal_to_noise < kClearSignal ? "noise"
+                                                          : "model";
   std::ostringstream v;
   v.precision(4);
   const double last = out.t.empty() ? kNaN : out.t.back();
   if (out.window.throughout) {
-    v << "fields agree within " << scene.sigmas << " sigma at every compared time up to t = "
-      << last;
+    v << "fields agree within " << scene.sigmas
+      << " sigma at every compared time up to t = " << last;
   } else if (out.window.until) {
     v << "fields agree within " << scene.sigmas << " sigma until t = " << *out.window.until
-      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at
-      << ")";
+      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at << ")";
   } else if (out.window.left_at) {
     v << "fields differ beyond " << scene.sigmas << " sigma from the first compared time; "
       << "worst: " << out.window.first_out;
   } else {
     v << "no common output time";
   }
-  v << " [signal/noise " << out.signal_to_noise << "]";
+  v << " [signal/noise " << out.signal_to_noise;
+  if (out.disagreement == "noise") {
+    v << ": the imposed flow is not well above the particles' noise, so the difference is "
+         "noise-driven, not a failure of the hydro";
+  } else if (out.disagreement == "model") {
+    v << ": the signal is clear of the noise, so the difference is the hydro's";
+  }
+  v << "]";
   out.verdict = v.str();
   return out;
 }

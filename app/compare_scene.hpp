@@ -63,6 +63,12 @@ struct CompareOutcome {
   std::vector<double> theory_rate;
   std::vector<double> collision_clock;  // s(t) of Haff's law at each output time
   double signal_to_noise = 0.0;
+  // Which kind a disagreement is (DESIGN.md §8): "none" (every field agreed throughout),
+  // "noise" (the imposed flow is not well above the thermal noise on the bin scale,
+  // signal_to_noise < 3, so the particles' own fluctuations, amplified by the unstable modes,
+  // compete with it: not a failure of the hydro) or "model" (a clear signal, and still the
+  // fields part: the hydro's physics or its parameters).
+  std::string disagreement;
   std::string verdict;
 };
 

@@ -79,8 +79,8 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {
   HydroOutcome out;
   const auto& physics = scene.physics;
-  out.fields = scene.given_fields ? *scene.given_fields
-                                  : hydro::make_initial_fields(scene.initial, physics);
+  out.fields =
+      scene.given_fields ? *scene.given_fields : hydro::make_initial_fields(scene.initial, physics);
   out.unstable_modes = hydro::clustering_unstable_modes(physics);
   out.shear_unstable_modes = hydro::shear_unstable_modes(physics);
   out.run = hydro::run_hydro(

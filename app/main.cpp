@@ -6,6 +6,7 @@
 #include "app/case_catalog.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
+#include "app/sweep_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace granvv::app;
@@ -24,11 +25,30 @@ int main(int argc, char** argv) {
   bool no_report = false;
   run_cmd->add_flag("--no-report", no_report, "skip report.html (results.h5, summary.json only)");
 
+  SweepOptions sweep;
+  auto* sweep_cmd = app.add_subcommand(
+      "sweep", "run a scene once per value of one key: --set KEY=V1,V2,... (and a sweep report)");
+  sweep_cmd->add_option("case", sweep.case_name, "case file or scene name from `granvv list`")
+      ->required();
+  sweep_cmd->add_option("--out", sweep.out_dir, "output folder (default out/<case>-sweep-<key>)");
+  sweep_cmd
+      ->add_option("--set", sweep.sets,
+                   "KEY=V1,V2,... sweeps KEY; KEY=V applies to every point (TOML value)")
+      ->allow_extra_args(false);
+  sweep_cmd->add_flag("--quiet", sweep.quiet, "no progress lines of the runs on stderr");
+  bool sweep_no_report = false;
+  sweep_cmd->add_flag("--no-report", sweep_no_report, "skip the reports (json and h5 only)");
+  sweep_cmd
+      ->add_option("--power-r-min", sweep.power_r_min,
+                   "fit the power of (1 - r^2) over restitutions >= this")
+      ->check(CLI::Range(0.0, 1.0));
+
   auto* list_cmd = app.add_subcommand("list", "list the scenes in cases/");
 
   std::string report_dir;
-  auto* report_cmd = app.add_subcommand("report", "rebuild DIR/report.html from DIR/results.h5");
-  report_cmd->add_option("dir", report_dir, "output folder of a run")->required();
+  auto* report_cmd = app.add_subcommand(
+      "report", "rebuild DIR/report.html from DIR/results.h5 (a run) or DIR/sweep.json (a sweep)");
+  report_cmd->add_option("dir", report_dir, "output folder of a run or a sweep")->required();
 
   try {
     app.parse(argc, argv);
@@ -41,6 +61,10 @@ int main(int argc, char** argv) {
     run.report = !no_report;
     return run_command(run);
   }
+  if (*sweep_cmd) {
+    sweep.report = !sweep_no_report;
+    return sweep_command(sweep);
+  }
   if (*list_cmd) {
     for (const auto& s : list_scenes()) {
       std::cout << s.name << "  " << s.description;
@@ -50,9 +74,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (*report_cmd) {
-    if (!std::filesystem::is_regular_file(std::filesystem::path(report_dir) / "results.h5")) {
-      std::cerr << "granvv: error: " << report_dir
-                << "/results.h5 not found; `granvv report DIR` needs the folder of a run\n";
+    const std::filesystem::path d(report_dir);
+    if (!std::filesystem::is_regular_file(d / "results.h5") &&
+        !std::filesystem::is_regular_file(d / "sweep.json")) {
+      std::cerr << "granvv: error: neither " << report_dir << "/results.h5 nor " << report_dir
+                << "/sweep.json found; `granvv report DIR` needs the folder of a run or a "
+                   "sweep\n";
       return 2;
     }
     return build_report(report_dir);

@@ -200,9 +200,10 @@ int run_command(const RunOptions& options) {
       const auto& sc = md_scene->spec.scene;
       if (compare_scene->hydro_from_md) {
         scene.given_fields = fields_from_snapshot(md->snapshots.front(), sc);
-        log->info("hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
-                  "members)",
-                  md_scene->spec.bins, md->runs.size());
+        log->info(
+            "hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
+            "members)",
+            md_scene->spec.bins, md->runs.size());
       }
       align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->snapshots);
       log->info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", scene.control.t_end,

@@ -29,7 +29,8 @@ BinnedFields bin_lagrangian_state(const hydro::LagrangianState& state, int bins)
 // Flow by inertia (paper Eq. 5): every fluid element keeps its initial velocity,
 // x(xi, t) = xi + t v0(xi), n = n0(xi) / (dx/dxi). Returned as a Lagrangian state of `labels`
 // elements (temperature carried unchanged, it has no meaning here), valid while x(xi) stays
-// monotonic, i.e. before the first crossing of trajectories.
+// monotonic, i.e. before the first crossing of trajectories. Element masses take n0 at the
+// element's midpoint (exact for uniform n0, second order otherwise).
 hydro::LagrangianState flow_by_inertia_state(const hydro::InitialFields& initial, double t,
                                              int labels);
 

@@ -7,8 +7,7 @@
 namespace granvv::compare {
 
 FieldDifference field_difference(const std::vector<double>& hydro, const std::vector<double>& md,
-                                 const std::vector<double>& md_error, double scale,
-                                 double sigmas) {
+                                 const std::vector<double>& md_error, double scale, double sigmas) {
   if (hydro.size() != md.size() || md.size() != md_error.size()) {
     throw std::invalid_argument("field_difference: hydro, md and error differ in length");
   }

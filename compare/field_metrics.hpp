@@ -18,11 +18,11 @@ struct FieldDifference {
   int points = 0;  // bins with finite hydro, MD and error
 };
 
-// d = hydro - md over the bins where all three are finite. Throws std::invalid_argument if the
-// sizes differ or scale or sigmas is not positive. No usable bin gives points = 0 and NaN norms.
+// d = hydro - md over the bins where all three are finite and the error is positive. Throws
+// std::invalid_argument if the sizes differ or scale or sigmas is not positive. No usable bin gives
+// points = 0 and NaN norms.
 FieldDifference field_difference(const std::vector<double>& hydro, const std::vector<double>& md,
-                                 const std::vector<double>& md_error, double scale,
-                                 double sigmas);
+                                 const std::vector<double>& md_error, double scale, double sigmas);
 
 // One field's differences at a sequence of output times.
 struct FieldTrack {

@@ -10,7 +10,7 @@ namespace granvv::compare {
 
 struct PowerLawFit {
   double power = 0.0, power_error = 0.0;
-  double prefactor = 0.0;   // C
+  double prefactor = 0.0;     // C
   double chi2_per_dof = 0.0;  // of the unscaled weighted fit (NaN for two points)
   int points = 0;
 };

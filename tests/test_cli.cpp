@@ -256,13 +256,31 @@ INSTANTIATE_TEST_SUITE_P(
                  "",
                  "--set 'hydro.output_times=[1,5]'",
                  {"--set", "hydro.output_times", "5", "hydro.t_end = 4.0"}},
-        // The quickstart's own output times all lie beyond t = 0.5; the message names the last
+        // single_mode's own output times all lie beyond t = 0.5; the message names the last
         // one (whatever the file says) and where it came from.
         BadInput{"set_t_end_before_output_times",
                  "",
-                 "--set hydro.t_end=0.5",
+                 "single_mode --set hydro.t_end=0.5",
                  {"--set hydro.t_end=0.5", "hydro.t_end = 0.5", "the last being",
-                  "embedded:cases/quickstart.toml:"}},
+                  "cases/single_mode.toml:"}},
+        BadInput{"compare_without_md",
+                 "",
+                 "single_mode --set compare.enabled=true",
+                 {"compare.enabled", "md.enabled = true"}},
+        BadInput{"compare_with_hydro_output_times",
+                 "",
+                 "--set 'hydro.output_times=[0.1]'",
+                 {"hydro.output_times", "must be empty when compare.enabled"}},
+        BadInput{"compare_from_md_needs_t0_snapshot",
+                 "",
+                 "--set 'md.output_times=[10, 20]'",
+                 {"md.output_times", "must start at 0"}},
+        BadInput{"density_modes_beyond_nyquist",
+                 "",
+                 "--set compare.density_modes=10",
+                 {"compare.density_modes = 10", "md.bins / 2 = 10"}},
+        BadInput{
+            "time_unit_unknown", "", "--set md.time_unit='s'", {"md.time_unit", "one of md, haff"}},
         BadInput{"set_on_named_scene",
                  "",
                  "single_mode --set hydro.cells=3",
@@ -366,15 +384,17 @@ TEST(CliDryRun, PrintsTheResolvedQuickstartAndWritesNothing) {
   const CliStreams r = run_cli_streams("run --dry-run --out " + q(out), scratch.path);
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_EQ(r.err, "");
-  EXPECT_TRUE(contains(r.out, "K = 0.0004")) << r.out;
+  EXPECT_TRUE(contains(r.out, "K = 0.02")) << r.out;
   EXPECT_TRUE(contains(r.out, "[hydro]")) << r.out;
+  EXPECT_TRUE(contains(r.out, "[compare]")) << r.out;
 
   const toml::table resolved = parse_toml(r.out, "dry-run output");
   const toml::table quickstart =
       toml::parse_file(std::string(GRANVV_SOURCE_DIR) + "/cases/quickstart.toml");
   EXPECT_EQ(resolved["case"]["name"].value<std::string>(), "quickstart");
-  EXPECT_EQ(resolved["physics"]["K"].value<double>(), 4e-4);
-  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.01);
+  EXPECT_EQ(resolved["physics"]["K"].value<double>(), 2e-2);
+  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.05);
+  EXPECT_EQ(resolved["compare"]["enabled"].value<bool>(), true);
 
   // Every key of the schema, the file's values where it has them, the defaults elsewhere.
   std::size_t hydro_keys = 0;
@@ -413,11 +433,11 @@ TEST(CliDryRun, ShowsASetOverride) {
   const CliStreams r = run_cli_streams("run --set physics.K=1e-3 --dry-run", scratch.path);
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_TRUE(contains(r.out, "K = 0.001")) << r.out;
-  EXPECT_FALSE(contains(r.out, "K = 0.0004")) << r.out;
+  EXPECT_FALSE(contains(r.out, "K = 0.02")) << r.out;
   EXPECT_TRUE(contains(r.out, "--set physics.K=1e-3")) << "the override is recorded\n" << r.out;
   const toml::table resolved = parse_toml(r.out, "dry-run output");
   EXPECT_EQ(resolved["physics"]["K"].value<double>(), 1e-3);
-  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.01);
+  EXPECT_EQ(resolved["physics"]["q"].value<double>(), 0.05);
   EXPECT_TRUE(fs::is_empty(scratch.path));
 }
 
@@ -626,10 +646,10 @@ std::vector<std::string> image_sources(const std::string& html) {
   return sources;
 }
 
-TEST(CliReport, QuickstartReportReferencesExistingFigures) {
+TEST(CliReport, SmallRunReportReferencesExistingFigures) {
   ScratchFolder scratch("report");
-  const fs::path out = scratch.path / "quickstart";
-  const CliStreams r = run_cli_streams("run quickstart --quiet --out " + q(out) + " " + kSmall);
+  const fs::path out = scratch.path / "single_mode";
+  const CliStreams r = run_cli_streams("run single_mode --quiet --out " + q(out) + " " + kSmall);
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   ASSERT_TRUE(fs::is_regular_file(out / "report.html")) << describe(r);
 
@@ -665,8 +685,13 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
   fs::create_directories(no_cases);
   // With an empty scene catalog, the quickstart must still come from the binary itself.
   ::setenv("GRANVV_CASES_DIR", no_cases.c_str(), 1);
-  const CliStreams r =
-      run_cli_streams("run --quiet --no-report --set hydro.cells=64 --out " + q(out), scratch.path);
+  // The quickstart is a side-by-side scene; a narrower channel, one seed and a shorter run
+  // keep this test to seconds (the full scene runs in the slow suite).
+  const CliStreams r = run_cli_streams(
+      "run --quiet --no-report --set hydro.cells=64 --set md.box_width=6 --set md.ensemble=1 "
+      "--set md.t_end=40 --set 'md.output_times=[0, 20, 40]' --out " +
+          q(out),
+      scratch.path);
   ::unsetenv("GRANVV_CASES_DIR");
   ASSERT_EQ(r.exit_code, 0) << describe(r);
 
@@ -676,8 +701,19 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
   const std::string status = s.value("status", "");
   EXPECT_TRUE(status == "ok" || status == "singularity") << status;
   EXPECT_EQ(s["hydro"]["cells"], 64);
-  EXPECT_EQ(s["hydro"]["snapshots"].size() + s["hydro"]["output_times_not_reached"].size(), 3u)
-      << "quickstart has output_times = [1, 2, 3]";
+  // Both engines ran and were compared at the particles' three snapshot times.
+  ASSERT_TRUE(s["md"].is_object()) << s.dump(2);
+  EXPECT_EQ(s["md"]["status"], "ok");
+  ASSERT_TRUE(s["compare"].is_object()) << s.dump(2);
+  EXPECT_EQ(s["compare"]["times"].size(), 3u);
+  // Snapshots land on the nearest MD step (dt well below 0.1 here).
+  EXPECT_NEAR(s["compare"]["times_md"][2].get<double>(), 40.0, 0.1);
+  for (const char* field : {"n", "v_x", "T"}) {
+    ASSERT_TRUE(s["compare"]["fields"].contains(field)) << field;
+    EXPECT_EQ(s["compare"]["fields"][field]["l2"].size(), 3u) << field;
+  }
+  EXPECT_TRUE(s["compare"]["verdict"].is_string());
+  EXPECT_GT(s["compare"]["cost"]["md"]["atom_steps"].get<double>(), 0.0);
   EXPECT_TRUE(contains(read_text(out / "case.toml"), "embedded:cases/quickstart.toml"));
   EXPECT_TRUE(fs::is_regular_file(out / "results.h5"));
   EXPECT_FALSE(fs::exists(scratch.path / "out")) << "--out was ignored";

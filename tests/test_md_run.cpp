@@ -98,10 +98,21 @@ TEST(MdCli, SmallHaffSceneThroughTheCli) {
   const auto r = granvv::testing::run_cli(
       "run md_haff --quiet --no-report --set md.particles=600 --set md.box_width=97 "
       "--set md.t_end=6 --set md.sample_interval=1 --set md.ensemble=2 --set md.seed=5 "
-      "--set md.restitution=0.8 --out " +
+      "--set md.restitution=0.8 --set 'md.output_times=[0, 3, 6]' --out " +
       dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  // md_haff compares with the hydro of the same K, q (compare.hydro_initial = "case"): a
+  // homogeneous hydro, so the density and flow agree with the particles within their noise.
+  const auto& c = s["compare"];
+  ASSERT_TRUE(c.is_object()) << s.dump(2);
+  EXPECT_EQ(c["hydro_initial"], "case");
+  EXPECT_EQ(c["times"].size(), 3u);
+  EXPECT_GE(c["fields"]["n"]["fraction_within"][0].get<double>(), 0.9);
+  EXPECT_GE(c["fields"]["v_x"]["fraction_within"][2].get<double>(), 0.9);
+  EXPECT_DOUBLE_EQ(c["haff"]["t0_theory_enskog"].get<double>(),
+                   s["md"]["haff_t0_theory"].get<double>());
+  EXPECT_GT(c["cost"]["hydro"]["cell_steps"].get<double>(), 0.0);
   const auto& md = s["md"];
   EXPECT_EQ(md["status"], "ok");
   EXPECT_EQ(md["particles"], 600);
@@ -132,7 +143,8 @@ namespace {
 TEST(MdCli, ProcessEndingInsideTheParticleRunLeavesReadableOutputs) {
   const auto dir = granvv::testing::fresh_directory("md-killed");
   const std::string command = "timeout -s KILL 4 " + std::string(GRANVV_BINARY) +
-                              " run md_haff --quiet --no-report --set md.t_end=1e4 --out " +
+                              " run md_haff --quiet --no-report --set md.t_end=1e4 "
+                              "--set compare.enabled=false --out " +
                               dir.string() + " > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   ASSERT_NE(status, 0);
@@ -144,6 +156,24 @@ TEST(MdCli, ProcessEndingInsideTheParticleRunLeavesReadableOutputs) {
   EXPECT_EQ(s["hydro"]["status"], "ok");  // the hydro part had finished and is kept
   EXPECT_TRUE(std::filesystem::exists(dir / "results.h5"));
   EXPECT_TRUE(std::filesystem::exists(dir / "log.lammps"));
+  std::filesystem::remove_all(dir);
+}
+
+// In a comparison the particles run first (the hydro starts from their fields): a process
+// ending inside them leaves a summary that says so, and nothing half-written.
+TEST(MdCli, ProcessEndingInsideTheParticleRunOfAComparisonSaysSo) {
+  const auto dir = granvv::testing::fresh_directory("md-killed-compare");
+  const std::string command = "timeout -s KILL 4 " + std::string(GRANVV_BINARY) +
+                              " run md_haff --quiet --no-report --set md.t_end=1e4 --out " +
+                              dir.string() + " > /dev/null 2>&1";
+  ASSERT_NE(std::system(command.c_str()), 0);
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_EQ(s["md"]["status"], "failed");
+  EXPECT_TRUE(s["compare"].is_null());
+  EXPECT_TRUE(std::filesystem::exists(dir / "case.toml"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "log.lammps"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "results.h5.partial"));
   std::filesystem::remove_all(dir);
 }
 
@@ -160,7 +190,8 @@ namespace {
 TEST(MdCli, TwoMpiRanksGiveTheStatisticsOfOne) {
   const std::string args =
       " run md_haff --quiet --no-report --set md.particles=800 --set md.box_width=112 "
-      "--set md.t_end=2 --set md.sample_interval=0.5 --set md.ensemble=1 --out ";
+      "--set md.t_end=2 --set md.sample_interval=0.5 --set md.ensemble=1 "
+      "--set 'md.output_times=[0, 1, 2]' --out ";
   const auto one = granvv::testing::fresh_directory("mpi-one");
   const auto two = granvv::testing::fresh_directory("mpi-two");
   ASSERT_EQ(

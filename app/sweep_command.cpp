@@ -1,0 +1,270 @@
+#include "app/sweep_command.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/case_catalog.hpp"
+#include "app/case_config.hpp"
+#include "app/compare_scene.hpp"
+#include "app/hydro_scene.hpp"
+#include "app/json_numbers.hpp"
+#include "app/md_scene.hpp"
+#include "app/report_command.hpp"
+#include "app/run_command.hpp"
+#include "compare/cooling_sweep.hpp"
+
+namespace granvv::app {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct SweptKey {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> parts;
+  std::string part;
+  for (char c : s) {
+    if (c == ',') {
+      parts.push_back(part), part.clear();
+    } else {
+      part += c;
+    }
+  }
+  parts.push_back(part);
+  return parts;
+}
+
+// The one --set whose value is a comma-separated list (not a TOML array or string) is swept;
+// the others apply to every point.
+SweptKey split_sweep(const std::vector<std::string>& sets, std::vector<std::string>& fixed) {
+  std::optional<SweptKey> swept;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    const std::string value = eq == std::string::npos ? "" : s.substr(eq + 1);
+    const bool list = eq != std::string::npos && value.find(',') != std::string::npos &&
+                      value.front() != '[' && value.front() != '"' && value.front() != '\'';
+    if (!list) {
+      fixed.push_back(s);
+      continue;
+    }
+    if (swept) {
+      throw ConfigError("--set " + s + ": only one key can be swept, and --set " + swept->key +
+                        "=... already is");
+    }
+    swept = SweptKey{s.substr(0, eq), split_commas(value)};
+    for (const auto& v : swept->values) {
+      if (v.empty()) throw ConfigError("--set " + s + ": an empty value in the list");
+    }
+  }
+  if (!swept) {
+    throw ConfigError(
+        "granvv sweep needs one --set KEY=V1,V2,... with the values to sweep (e.g. --set "
+        "md.restitution=0.7,0.8,0.9)");
+  }
+  const KeySpec* spec = find_key_spec(swept->key);
+  if (spec && spec->type != ValueType::real && spec->type != ValueType::integer) {
+    throw ConfigError("--set " + swept->key + "=...: " + swept->key + " is " +
+                      type_phrase(spec->type) + "; only numeric keys can be swept");
+  }
+  return *swept;
+}
+
+std::string folder_name(const std::string& key, const std::string& value) {
+  std::string s = key + "=" + value;
+  for (char& c : s) {
+    if (c == '/' || c == '\\' || c == ' ') c = '_';
+  }
+  return s;
+}
+
+void write_json(const fs::path& path, const json& j) {
+  const fs::path tmp = path.string() + ".partial";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+json value_or_null(const json& j, const char* key) {
+  return j.is_object() && j.contains(key) ? j[key] : json(nullptr);
+}
+
+// The regression on the restitution coefficient over the points that measured a Haff time.
+json cooling_analysis(const json& points, double power_r_min, double sigmas) {
+  std::vector<compare::CoolingPoint> cooling;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const json& md = points[i]["md"];
+    if (!md.is_object() || !md["haff_t0_measured"].is_number() ||
+        !md["haff_t0_measured_error"].is_number()) {
+      continue;
+    }
+    compare::CoolingPoint p;
+    p.restitution = md["restitution"].get<double>();
+    p.t0 = md["haff_t0_measured"].get<double>();
+    p.t0_error = md["haff_t0_measured_error"].get<double>();
+    p.t0_enskog = md["haff_t0_theory"].get<double>();
+    p.t0_dilute = md["haff_t0_theory_dilute"].get<double>();
+    p.t0_paper = md["haff_t0_paper"].get<double>();
+    if (!(p.t0_error > 0) || !(p.restitution < 1)) continue;
+    cooling.push_back(p);
+    index.push_back(i);
+  }
+  if (cooling.empty()) return nullptr;
+  const auto s = compare::analyse_cooling_sweep(cooling, power_r_min, sigmas);
+  json rows = json::array();
+  for (std::size_t i = 0; i < cooling.size(); ++i) {
+    rows.push_back(
+        {{"point", index[i]},
+         {"restitution", cooling[i].restitution},
+         {"t0", cooling[i].t0},
+         {"t0_error", cooling[i].t0_error},
+         {"zeta", s.zeta[i]},
+         {"zeta_error", s.zeta_error[i]},
+         {"zeta_enskog", s.zeta_enskog[i]},
+         {"zeta_dilute", s.zeta_dilute[i]},
+         {"zeta_paper", s.zeta_paper[i]},
+         {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
+         {"deviation_enskog", cooling[i].t0 / cooling[i].t0_enskog - 1.0},
+         {"deviation_enskog_sigmas", (cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error},
+         {"paper_deviation", s.paper_deviation[i]},
+         {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]}});
+  }
+  json power = nullptr;
+  if (s.power) {
+    power = {
+        {"power", s.power->power},         {"power_error", s.power->power_error},
+        {"prefactor", s.power->prefactor}, {"chi2_per_dof", number_or_null(s.power->chi2_per_dof)},
+        {"points", s.power->points},       {"r_min", power_r_min}};
+  }
+  return {{"points", rows},
+          {"power_of_one_minus_r2", power},
+          {"paper_departs_at_r", number_or_null(s.paper_departs_at)},
+          {"sigmas", sigmas}};
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& options) {
+  // 1. Every point's case is validated before anything runs or is written.
+  std::vector<std::string> fixed;
+  SweptKey swept;
+  std::string case_name;
+  try {
+    swept = split_sweep(options.sets, fixed);
+    const CaseSource source = locate_case(options.case_name);
+    for (const auto& value : swept.values) {
+      auto sets = fixed;
+      sets.push_back(swept.key + "=" + value);
+      const CaseConfig config = CaseConfig::from_string(source.text, source.origin, sets);
+      HydroScene hydro = hydro_scene_from(config);
+      (void)md_scene_from(config, hydro);
+      (void)compare_scene_from(config);
+      case_name = config.name();
+    }
+  } catch (const ConfigError& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 2;
+  }
+  std::string key_name = swept.key;
+  for (char& c : key_name) c = c == '.' ? '_' : c;
+  const fs::path dir = options.out_dir.empty()
+                           ? fs::path("out") / (case_name + "-sweep-" + key_name)
+                           : fs::path(options.out_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    std::cerr << "granvv: error: cannot create output folder " << dir << ": " << ec.message()
+              << "\n";
+    return 1;
+  }
+
+  // 2. One run per value; sweep.json is rewritten after every point, so a stopped sweep keeps
+  // what it finished.
+  const auto start = std::chrono::steady_clock::now();
+  json sweep = {{"case", case_name},
+                {"key", swept.key},
+                {"values", swept.values},
+                {"fixed_sets", fixed},
+                {"granvv_version", GRANVV_VERSION},
+                {"status", "running"},
+                {"points", json::array()},
+                {"cooling", nullptr}};
+  int exit_code = 0;
+  for (std::size_t i = 0; i < swept.values.size(); ++i) {
+    const std::string& value = swept.values[i];
+    RunOptions run;
+    run.case_name = options.case_name;
+    run.out_dir = (dir / folder_name(swept.key, value)).string();
+    run.sets = fixed;
+    run.sets.push_back(swept.key + "=" + value);
+    run.quiet = options.quiet;
+    run.report = options.report;
+    std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
+              << " = " << value << " -> " << run.out_dir << "\n";
+    const int status = run_command(run);
+    json point = {{"value", std::stod(value)},
+                  {"dir", fs::path(run.out_dir).filename().string()},
+                  {"exit_code", status}};
+    json summary;
+    std::ifstream in(fs::path(run.out_dir) / "summary.json");
+    if (in) {
+      try {
+        in >> summary;
+      } catch (const json::exception&) {
+        summary = nullptr;
+      }
+    }
+    point["status"] = value_or_null(summary, "status");
+    point["md"] = value_or_null(summary, "md");
+    point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
+                                      ? summary["hydro"]["wall_seconds"]
+                                      : json(nullptr);
+    point["compare"] = value_or_null(summary, "compare");
+    if (status != 0) exit_code = 1;
+    sweep["points"].push_back(point);
+    const json& md = point["md"];
+    if (md.is_object() && md["haff_t0_measured"].is_number()) {
+      std::cerr << "sweep: " << swept.key << " = " << value
+                << ": Haff t0 = " << md["haff_t0_measured"].get<double>() << " +- "
+                << value_or_null(md, "haff_t0_measured_error")
+                << " (kinetic theory with chi: " << md["haff_t0_theory"].get<double>() << ")\n";
+    }
+    sweep["wall_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_json(dir / "sweep.json", sweep);
+  }
+  try {
+    sweep["cooling"] = cooling_analysis(sweep["points"], options.power_r_min, 3.0);
+  } catch (const std::exception& e) {
+    sweep["cooling_error"] = e.what();
+  }
+  sweep["status"] = exit_code == 0 ? "ok" : "failed";
+  write_json(dir / "sweep.json", sweep);
+  if (sweep["cooling"].is_object() && sweep["cooling"]["power_of_one_minus_r2"].is_object()) {
+    const auto& p = sweep["cooling"]["power_of_one_minus_r2"];
+    std::cerr << "sweep: cooling rate ~ (1 - r^2)^p with p = " << p["power"].get<double>() << " +- "
+              << p["power_error"].get<double>() << " over r >= " << options.power_r_min << "\n";
+  }
+  std::cerr << "sweep: wrote " << (dir / "sweep.json").string() << "\n";
+  if (options.report) {
+    const int status = build_report(dir);
+    if (status != 0) {
+      std::cerr << "granvv: error: sweep report failed (exit " << status
+                << "); sweep.json is complete\n";
+      exit_code = exit_code ? exit_code : 1;
+    }
+  }
+  return exit_code;
+}
+
+}  // namespace granvv::app
