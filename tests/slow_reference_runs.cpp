@@ -46,6 +46,9 @@ TEST(SlowReference, EveryShippedCaseRunsEndToEndWithItsReport) {
     const auto summary = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
     EXPECT_NE(summary["status"], "failed") << scene.name;
     EXPECT_TRUE(std::filesystem::exists(dir / "report.html")) << scene.name;
+    // Every scene's report, opened in a real browser: loads, every figure shows, no errors.
+    const auto browser = granvv::testing::check_report_in_browser(dir);
+    EXPECT_EQ(browser.exit_code, 0) << scene.name << ":\n" << browser.output;
     EXPECT_LT(summary["hydro"]["energy_drift"].get<double>(), 1e-12) << scene.name;
     std::filesystem::remove_all(dir);
   }

@@ -1,12 +1,10 @@
-// Long run (ctest -L slow): the HTML report of the default scene, opened in a real headless
-// Chromium by scripts/check_report.py (chromedriver, W3C WebDriver). The report must have a title
-// and headings, every figure must load, and the browser console must show no SEVERE message; a
-// report with a figure deleted must fail the same check.
+// Long runs (ctest -L slow): the HTML reports of the default scene and of a sweep, opened in a
+// real headless Chromium by scripts/check_report.py (chromedriver, W3C WebDriver). A report must
+// have a title and headings, every figure must load, and the browser console must show no SEVERE
+// message; a report with a figure deleted must fail the same check. (Every shipped scene's
+// report is checked the same way in slow_reference_runs.cpp.)
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -17,77 +15,53 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// scripts/check_report.py on dir, with stdout and stderr together.
-granvv::testing::CliResult check_report(const fs::path& dir) {
-  granvv::testing::CliResult r;
-  const std::string command =
-      "/usr/bin/python3 " +
-      granvv::testing::shell_quote(std::string(GRANVV_SOURCE_DIR) + "/scripts/check_report.py") +
-      " " + granvv::testing::shell_quote(dir.string()) + " --timeout 90 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+// A run into a fresh folder; the test fails (with the run's output) unless it made a report.
+fs::path run_with_report(const std::string& name, const std::string& args) {
+  const fs::path dir = granvv::testing::fresh_directory(name);
+  const auto r = granvv::testing::run_cli(args + " --out " + granvv::testing::shell_quote(dir));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "report.html")) << r.output;
+  return dir;
 }
 
-class BrowserReport : public ::testing::Test {
- protected:
-  // One real run of the default scene per test process (ctest runs each test in its own).
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(granvv::testing::fresh_directory("browser-report"));
-    const auto r = granvv::testing::run_cli("run --quiet --out " +
-                                            granvv::testing::shell_quote(dir_->string()));
-    run_output_ = new std::string(r.output);
-    run_exit_code_ = r.exit_code;
-  }
-  static void TearDownTestSuite() {
-    std::error_code ec;
-    fs::remove_all(*dir_, ec);
-    delete dir_;
-    delete run_output_;
-  }
-  void SetUp() override {
-    ASSERT_EQ(run_exit_code_, 0) << *run_output_;
-    ASSERT_TRUE(fs::exists(*dir_ / "report.html")) << *run_output_;
-  }
-
-  static fs::path* dir_;
-  static std::string* run_output_;
-  static int run_exit_code_;
-};
-
-fs::path* BrowserReport::dir_ = nullptr;
-std::string* BrowserReport::run_output_ = nullptr;
-int BrowserReport::run_exit_code_ = -1;
-
-TEST_F(BrowserReport, DefaultSceneReportRendersInChromium) {
-  const auto r = check_report(*dir_);
+TEST(BrowserReport, DefaultSceneReportRendersInChromium) {
+  const fs::path dir = run_with_report("browser-default", "run --quiet");
+  const auto r = granvv::testing::check_report_in_browser(dir);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("check_report: PASS"), std::string::npos) << r.output;
+  fs::remove_all(dir);
 }
 
-TEST_F(BrowserReport, ReportWithAMissingFigureFails) {
-  const auto broken = granvv::testing::fresh_directory("browser-report-broken");
-  fs::copy(*dir_, broken, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+TEST(BrowserReport, SweepReportRendersInChromium) {
+  const fs::path dir = run_with_report(
+      "browser-sweep",
+      "sweep md_cooling_sweep --quiet --set md.restitution=0.7,0.9 --set md.ensemble=2 "
+      "--set md.t_end=0.3");
+  const auto r = granvv::testing::check_report_in_browser(dir);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  fs::remove_all(dir);
+}
+
+TEST(BrowserReport, ReportWithAMissingFigureFails) {
+  const fs::path dir =
+      run_with_report("browser-broken",
+                      "run single_mode --quiet --set hydro.cells=64 --set 'convergence.cells=[]' "
+                      "--set hydro.t_end=0.5 --set 'hydro.output_times=[0.25]'");
   fs::path figure;
-  for (const auto& entry : fs::directory_iterator(broken / "figures")) {
+  for (const auto& entry : fs::directory_iterator(dir / "figures")) {
     if (entry.path().extension() == ".png" && (figure.empty() || entry.path() < figure)) {
       figure = entry.path();
     }
   }
-  ASSERT_FALSE(figure.empty()) << "no figures/*.png in " << broken;
+  ASSERT_FALSE(figure.empty()) << "no figures/*.png in " << dir;
+  ASSERT_EQ(granvv::testing::check_report_in_browser(dir).exit_code, 0) << "intact report";
   fs::remove(figure);
 
-  const auto r = check_report(broken);
+  const auto r = granvv::testing::check_report_in_browser(dir);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("broken image: figures/" + figure.filename().string()), std::string::npos)
       << r.output;
-  std::error_code ec;
-  fs::remove_all(broken, ec);
+  fs::remove_all(dir);
 }
 
 }  // namespace

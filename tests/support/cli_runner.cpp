@@ -12,8 +12,18 @@
 namespace granvv::testing {
 
 CliResult run_cli(const std::string& args) {
+  return run_shell(std::string(GRANVV_BINARY) + " " + args);
+}
+
+CliResult check_report_in_browser(const std::filesystem::path& dir) {
+  return run_shell("/usr/bin/python3 " +
+                   shell_quote(std::string(GRANVV_SOURCE_DIR) + "/scripts/check_report.py") + " " +
+                   shell_quote(dir.string()) + " --timeout 90");
+}
+
+CliResult run_shell(const std::string& shell_command) {
   CliResult r;
-  const std::string command = std::string(GRANVV_BINARY) + " " + args + " 2>&1";
+  const std::string command = shell_command + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buffer{};

@@ -12,6 +12,11 @@ struct CliResult {
 
 // args are appended to the binary path as given (quote them yourself).
 CliResult run_cli(const std::string& args);
+// Any shell command, stdout and stderr together.
+CliResult run_shell(const std::string& command);
+// scripts/check_report.py on a run or sweep folder: its report.html opened in headless Chromium
+// (exit 0: the page loads, every figure shows, no console errors; 1: a check failed).
+CliResult check_report_in_browser(const std::filesystem::path& dir);
 // A fresh empty folder under the system temp directory.
 std::filesystem::path fresh_directory(const std::string& name);
 std::string read_text(const std::filesystem::path& file);
