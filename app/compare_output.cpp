@@ -32,6 +32,24 @@ std::vector<double> per_time(const compare::FieldTrack& track, F member) {
   return v;
 }
 
+// Growth of each density mode from the first to the last compared time, |n_k(t)| / |n_k(0)|:
+// particles (rms over seeds), hydro, and linear theory from each seed's own t = 0 perturbation.
+json modes_summary(const CompareOutcome& out) {
+  if (out.theory_rate.empty() || out.md_modes.empty()) return nullptr;
+  auto growth = [](const std::vector<std::vector<double>>& rows) {
+    std::vector<double> g;
+    for (std::size_t k = 0; k < rows.front().size(); ++k) g.push_back(rows.back()[k] / rows[0][k]);
+    return numbers(g);
+  };
+  std::vector<double> k;
+  for (std::size_t i = 1; i <= out.theory_rate.size(); ++i) k.push_back(double(i));
+  return {{"k", numbers(k)},
+          {"theory_rate", numbers(out.theory_rate)},
+          {"growth_md", growth(out.md_modes)},
+          {"growth_hydro", growth(out.hydro_modes)},
+          {"growth_theory", growth(out.theory_modes)}};
+}
+
 }  // namespace
 
 json compare_summary(const CompareScene& scene, const HydroScene& hydro,
@@ -76,6 +94,7 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
       {"left_at", number_or_null(out.window.left_at)},
       {"verdict", out.verdict},
       {"disagreement", out.disagreement},
+      {"first_field_offset_sigmas", number_or_null(out.offset_sigmas)},
       {"signal_to_noise", number_or_null(out.signal_to_noise)},
       {"haff",
        {{"t0_measured", number_or_null(haff.t0)},
@@ -107,7 +126,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
         {"md_n", numbers(out.md_n_peak)},
         {"md_n_error", numbers(out.md_n_peak_error)},
         {"inertia_n", numbers(out.inertia_n_peak)}}},
-      {"density_modes", scene.density_modes},
+      {"energy",
+       {{"hydro_thermal", numbers(out.hydro_energy_thermal)},
+        {"md_thermal", numbers(out.md_energy_thermal)},
+        {"hydro_kinetic", numbers(out.hydro_energy_kinetic)},
+        {"md_kinetic", numbers(out.md_energy_kinetic)}}},
+      {"density_modes", modes_summary(out)},
   };
 }
 

@@ -24,8 +24,10 @@ struct CompareScene {
 // Reads [compare]; std::nullopt if compare.enabled is false.
 std::optional<CompareScene> compare_scene_from(const CaseConfig& config);
 
-// The hydro of a comparison runs to the particles' end time; its snapshots are taken at the
-// particles' actual snapshot times (which land on MD steps), all converted to scaled units.
+// The hydro of a comparison models the particles' own scene: K and q from the particle scene
+// (which md.particles or the rounding of N may set apart from physics.K), the particles' end
+// time, and snapshots at their actual snapshot times (which land on MD steps), all in scaled
+// units.
 void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
                          const std::vector<EnsembleSnapshot>& md_snapshots);
 
@@ -63,12 +65,15 @@ struct CompareOutcome {
   std::vector<double> theory_rate;
   std::vector<double> collision_clock;  // s(t) of Haff's law at each output time
   double signal_to_noise = 0.0;
-  // Which kind a disagreement is (DESIGN.md §8): "none" (every field agreed throughout),
-  // "noise" (the imposed flow is not well above the thermal noise on the bin scale,
-  // signal_to_noise < 3, so the particles' own fluctuations, amplified by the unstable modes,
-  // compete with it: not a failure of the hydro) or "model" (a clear signal, and still the
-  // fields part: the hydro's physics or its parameters).
+  // Which kind a disagreement is (DESIGN.md §8): "none" (every field agreed throughout);
+  // "model" when the imposed flow is clear of the thermal noise on the bin scale
+  // (signal_to_noise >= 3) and the fields still part, or when the first field to part is off by
+  // a box-mean offset beyond `sigmas` standard errors of the box mean (a different cooling rate,
+  // say, which fluctuations with zero mean cannot make); otherwise "noise": the particles' own
+  // fluctuations, amplified by the unstable modes, compete with a weak or absent signal and
+  // shape the profiles, which a deterministic hydro cannot follow; not a failure of the hydro.
   std::string disagreement;
+  double offset_sigmas = 0.0;  // box-mean offset of the first field to part, in its std. errors
   std::string verdict;
 };
 

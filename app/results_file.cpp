@@ -82,6 +82,9 @@ void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out)
   write_vector(g, "mode_k", k);
   write_vector(g, "clustering_rate", clustering);
   write_vector(g, "shear_rate", shear);
+  // The physics the hydro ran with (in a comparison, the particle scene's K and q).
+  write_attribute(g, "K", p.K);
+  write_attribute(g, "q", p.q);
   write_attribute(g, "t0", hydro::haff_time_scale(p));
   write_attribute(g, "unstable_modes", double(out.unstable_modes));
   write_attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));

@@ -205,7 +205,12 @@ int run_command(const RunOptions& options) {
             "members)",
             md_scene->spec.bins, md->runs.size());
       }
+      const hydro::Physics given = scene.physics;
       align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->snapshots);
+      log->info(
+          "hydro: K = {:.6g}, q = {:.6g} from the particle scene (case: physics.K = {:.6g}, "
+          "physics.q = {:.6g})",
+          scene.physics.K, scene.physics.q, given.K, given.q);
       log->info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", scene.control.t_end,
                 scene.control.output_times.size());
     }
