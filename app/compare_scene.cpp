@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "compare/density_modes.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
@@ -16,30 +17,6 @@ namespace granvv::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Periodic, piecewise-linear interpolation through values at the centres of equal bins of
-// [-1/2, 1/2).
-std::function<double(double)> periodic_interpolant(std::vector<double> values) {
-  return [values = std::move(values)](double x) {
-    const int bins = static_cast<int>(values.size());
-    const double u = (x + 0.5) * bins - 0.5;
-    const double lower = std::floor(u);
-    const double f = u - lower;
-    const int i = ((static_cast<long long>(lower) % bins) + bins) % bins;
-    return (1.0 - f) * values[i] + f * values[(i + 1) % bins];
-  };
-}
-
-// Density Fourier amplitude |sum_b f_b dx exp(-2 pi i k x_b)| of a field on equal bins.
-std::complex<double> fourier_coefficient(const std::vector<double>& f, const std::vector<double>& x,
-                                         int k) {
-  std::complex<double> c = 0.0;
-  const double dx = 1.0 / f.size();
-  for (std::size_t b = 0; b < f.size(); ++b) {
-    c += f[b] * dx * std::exp(std::complex<double>(0.0, -2.0 * M_PI * k * x[b]));
-  }
-  return c;
-}
 
 // Mass-weighted mean of g over the bins: sum n g / sum n.
 double mass_mean(const std::vector<double>& n, const std::vector<double>& g) {
@@ -169,10 +146,10 @@ hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& s,
     T.push_back(s.T.mean[b]);
   }
   hydro::InitialFields f;
-  f.n = periodic_interpolant(n);
-  f.v = periodic_interpolant(vx);
-  f.vy = periodic_interpolant(vy);
-  f.T = periodic_interpolant(T);
+  f.n = compare::bin_interpolant(n);
+  f.v = compare::bin_interpolant(vx);
+  f.vy = compare::bin_interpolant(vy);
+  f.T = compare::bin_interpolant(T);
   return f;
 }
 
@@ -307,16 +284,8 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     std::vector<std::vector<Eigen::Vector3cd>> initial(members);
     for (int r = 0; r < members; ++r) {
       const auto& f = md_out.runs[r].snapshots.front().fields;
-      std::vector<double> nu, w, theta;
-      const double T_mean = mass_mean(f.n, f.T);
-      for (int b = 0; b < bins; ++b) {
-        nu.push_back(f.n[b] / n0 - 1.0);
-        w.push_back(f.v_x[b] / std::sqrt(T_mean));
-        theta.push_back(f.T[b] / T_mean - 1.0);
-      }
       for (int k = 1; k <= scene.density_modes; ++k) {
-        initial[r].push_back({fourier_coefficient(nu, out.x, k), fourier_coefficient(w, out.x, k),
-                              fourier_coefficient(theta, out.x, k)});
+        initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
       }
     }
     for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -324,7 +293,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
       std::vector<double> hydro_row, md_row, md_err, theory_row;
       const std::size_t s_index = pairs[i].first - md_out.snapshots.data();
       for (int k = 1; k <= scene.density_modes; ++k) {
-        hydro_row.push_back(std::abs(fourier_coefficient(hb.n, out.x, k)));
+        hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
         std::vector<std::vector<double>> power;  // one |n_k|^2 per member
         double theory2 = 0.0;
         for (int r = 0; r < members; ++r) {
@@ -332,7 +301,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
           if (s_index >= snaps.size()) continue;
           std::vector<double> relative;
           for (double n : snaps[s_index].fields.n) relative.push_back(n / n0);
-          power.push_back({std::norm(fourier_coefficient(relative, out.x, k))});
+          power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
           const Eigen::Vector3cd evolved = hydro::hcs_linear_evolution(
               hydro.physics, k, initial[r][k - 1], out.collision_clock[i]);
           theory2 += std::norm(evolved[0]);

@@ -54,6 +54,18 @@ BinnedFields bin_lagrangian_state(const hydro::LagrangianState& s, int bins) {
   return f;
 }
 
+std::function<double(double)> bin_interpolant(std::vector<double> values) {
+  if (values.empty()) throw std::invalid_argument("bin_interpolant: no values");
+  return [values = std::move(values)](double x) {
+    const int bins = static_cast<int>(values.size());
+    const double u = (x + 0.5) * bins - 0.5;  // 0 at the first bin centre
+    const double lower = std::floor(u);
+    const double f = u - lower;
+    const int i = static_cast<int>(((static_cast<long long>(lower) % bins) + bins) % bins);
+    return (1.0 - f) * values[i] + f * values[(i + 1) % bins];
+  };
+}
+
 hydro::LagrangianState flow_by_inertia_state(const hydro::InitialFields& initial, double t,
                                              int labels) {
   if (labels < 2) throw std::invalid_argument("flow_by_inertia_state: labels must be >= 2");

@@ -10,6 +10,7 @@
 // it for particles: T_b = [sum n T + (1/2) sum n |v - v_b|^2] / M_b. The second term is the
 // flow that varies inside the bin, which particles in one bin see as heat; for a 2D gas
 // (thermal energy T per particle, DESIGN.md §4) it enters with the factor 1/2.
+#include <functional>
 #include <vector>
 
 #include "hydro/initial_conditions.hpp"
@@ -25,6 +26,10 @@ struct BinnedFields {
 
 // Throws std::invalid_argument if bins < 1 or the state has no cells.
 BinnedFields bin_lagrangian_state(const hydro::LagrangianState& state, int bins);
+
+// The other way: a continuous, 1-periodic function through values at the bin centres,
+// piecewise linear between them (a bin's mean is kept to second order in the bin width).
+std::function<double(double)> bin_interpolant(std::vector<double> values);
 
 // Flow by inertia (paper Eq. 5): every fluid element keeps its initial velocity,
 // x(xi, t) = xi + t v0(xi), n = n0(xi) / (dx/dxi). Returned as a Lagrangian state of `labels`

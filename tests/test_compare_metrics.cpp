@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "compare/binned_fields.hpp"
+#include "compare/density_modes.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/field_metrics.hpp"
 #include "compare/power_law_fit.hpp"
@@ -795,6 +796,57 @@ TEST(BinnedFlowByInertia, BinnedDensityMatchesTheExactBinAverage) {
   EXPECT_LT(f.n[centre], 2.0);
   EXPECT_NEAR(f.v_x[centre], 0.0, 1e-12);  // odd v about x = 0
   EXPECT_NEAR(total, 1.0, 1e-12);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Bin interpolation and Fourier modes of binned fields.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+TEST(BinnedInterpolant, ThroughTheCentresLinearBetweenPeriodicAcrossTheEnds) {
+  const std::vector<double> v = {1.0, 3.0, 2.0, -1.0};  // centres -3/8, -1/8, 1/8, 3/8
+  const auto f = granvv::compare::bin_interpolant(v);
+  for (int b = 0; b < 4; ++b) EXPECT_NEAR(f(-0.5 + (b + 0.5) / 4), v[b], 1e-15);
+  EXPECT_NEAR(f(-0.25), 2.0, 1e-15);        // midway between 1 and 3
+  EXPECT_NEAR(f(0.5), 0.0, 1e-15);          // midway between -1 (last) and 1 (first)
+  EXPECT_NEAR(f(-0.5), f(0.5), 1e-15);      // periodic
+  EXPECT_NEAR(f(0.125 + 3.0), 2.0, 1e-12);  // any period
+  EXPECT_THROW(granvv::compare::bin_interpolant({}), std::invalid_argument);
+}
+
+TEST(DensityModes, CosineOnBinsHasCoefficientOneHalfAndNoOtherModes) {
+  // Discrete orthogonality on B equal bins: exact for |k|, |m| < B/2 (round-off only).
+  const int B = 40;
+  for (int m = 1; m < B / 2; m += 3) {
+    std::vector<double> f;
+    for (int b = 0; b < B; ++b) f.push_back(std::cos(2 * M_PI * m * (-0.5 + (b + 0.5) / B)));
+    for (int k = 1; k < B / 2; ++k) {
+      const auto c = granvv::compare::bin_fourier_coefficient(f, k);
+      EXPECT_NEAR(std::abs(c), k == m ? 0.5 : 0.0, 1e-13) << "m = " << m << ", k = " << k;
+    }
+  }
+}
+
+TEST(DensityModes, HcsPerturbationTakesDensityAndTemperatureRelativeToTheirMeans) {
+  // n = n0 (1 + e cos 2 pi x), v = u sin 2 pi x, T = T_H (1 - e cos 2 pi x) with T_H the
+  // mass-weighted mean: nu_1 = e/2, w_1 = u/(2i sqrt(T_H)), theta_1 = -e/2 up to the O(e^2)
+  // shift of the mass-weighted mean temperature.
+  const int B = 64;
+  const double n0 = 0.06, e = 1e-3, u = 0.2, TH = 0.25;
+  std::vector<double> n, v, T;
+  for (int b = 0; b < B; ++b) {
+    const double x = -0.5 + (b + 0.5) / B;
+    n.push_back(n0 * (1 + e * std::cos(2 * M_PI * x)));
+    v.push_back(u * std::sin(2 * M_PI * x));
+    T.push_back(TH * (1 - e * std::cos(2 * M_PI * x)));
+  }
+  const Eigen::Vector3cd p = granvv::compare::hcs_perturbation(n, v, T, 1);
+  EXPECT_NEAR(p[0].real(), e / 2, 1e-12);
+  EXPECT_NEAR(p[1].imag(), -u / (2 * std::sqrt(TH)), 1e-3 * u);  // T mean shifted by e^2/2
+  EXPECT_NEAR(p[2].real(), -e / 2, 1e-6);
+  EXPECT_THROW(granvv::compare::hcs_perturbation(n, v, {1.0}, 1), std::invalid_argument);
 }
 
 }  // namespace
