@@ -301,6 +301,31 @@ TEST(CliBadInputKeepsOutput, RejectedRunLeavesAnExistingFolderUntouched) {
   EXPECT_EQ(files, std::vector<std::string>{"summary.json"});
 }
 
+// `granvv sweep`: every point's case is checked before anything runs; bad input is one line,
+// exit 2, and the output folder is not created.
+TEST(CliSweep, BadSweepsExitTwoWithOneLineAndWriteNothing) {
+  ScratchFolder scratch("sweep-bad");
+  const fs::path out = scratch.path / "sweep";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"md_cooling_sweep --set md.restitution=0.9", {"one --set KEY=V1,V2"}},
+      {"md_cooling_sweep --set md.restitution=0.5,1.5", {"md.restitution = 1.5", "[0, 1]"}},
+      {"md_cooling_sweep --set md.kernel=bin,lucy", {"md.kernel", "only numeric keys"}},
+      {"md_cooling_sweep --set md.restitution=0.5,0.7 --set md.seed=1,2", {"only one key"}},
+      {"md_cooling_sweep --set md.frobnicate=1,2", {"md.frobnicate"}},
+      {"no_such_scene --set md.restitution=0.5,0.7", {"no_such_scene"}},
+  };
+  for (const auto& [args, expected] : cases) {
+    SCOPED_TRACE(args);
+    const CliStreams r = run_cli_streams("sweep " + args + " --out " + q(out));
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    const auto lines = lines_of(r.err);
+    ASSERT_EQ(lines.size(), 1u) << describe(r);
+    EXPECT_TRUE(starts_with(lines[0], "granvv: error: ")) << lines[0];
+    for (const auto& e : expected) EXPECT_TRUE(contains(lines[0], e)) << lines[0];
+    EXPECT_FALSE(fs::exists(out)) << "a rejected sweep created its folder";
+  }
+}
+
 TEST(CliReportCommand, FolderWithoutResultsExitsTwo) {
   ScratchFolder scratch("report-no-results");
   const CliStreams r = run_cli_streams("report " + q(scratch.path));
