@@ -444,7 +444,7 @@ TEST(CliDryRun, PrintsTheResolvedQuickstartAndWritesNothing) {
   // Values are compared with the file above; here, that each [hydro] key is printed.
   for (const char* key : {"cells = ", "t_end = ", "output_times = [",
                           "cfl = ", "max_compression = ", "max_temperature_change = ", "dt_max = ",
-                          "stop_density = ", "min_cell_width = ", "transverse_velocity = false",
+                          "stop_density = ", "min_cell_width = ", "transverse_velocity = true",
                           "node_offset = ", "progress_seconds = ", "series_every = 1"}) {
     EXPECT_TRUE(contains(r.out, key)) << key;
   }
