@@ -159,6 +159,7 @@ int sweep_command(const SweepOptions& options) {
   std::vector<std::string> fixed;
   SweptKey swept;
   std::string case_name;
+  std::vector<double> numeric_values;  // each value as the case resolved it
   try {
     swept = split_sweep(options.sets, fixed);
     const CaseSource source = locate_case(options.case_name);
@@ -170,6 +171,9 @@ int sweep_command(const SweepOptions& options) {
       (void)md_scene_from(config, hydro);
       (void)compare_scene_from(config);
       case_name = config.name();
+      numeric_values.push_back(find_key_spec(swept.key)->type == ValueType::integer
+                                   ? double(config.integer(swept.key))
+                                   : config.real(swept.key));
     }
   } catch (const ConfigError& e) {
     std::cerr << "granvv: error: " << e.what() << "\n";
@@ -212,7 +216,7 @@ int sweep_command(const SweepOptions& options) {
     std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
               << " = " << value << " -> " << run.out_dir << "\n";
     const int status = run_command(run);
-    json point = {{"value", std::stod(value)},
+    json point = {{"value", numeric_values[i]},
                   {"dir", fs::path(run.out_dir).filename().string()},
                   {"exit_code", status}};
     json summary;
