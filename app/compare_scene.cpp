@@ -89,6 +89,175 @@ double box_mean_offset(const ComparedField& f, std::size_t k) {
   return var > 0 ? sum / std::sqrt(var) : 0.0;
 }
 
+// Per field: the hydro on the bins against the MD mean and its error (scaled units), and their
+// difference at this output time.
+void compare_fields_at(std::vector<ComparedField>& fields, const compare::BinnedFields& hb,
+                       const EnsembleSnapshot* m, double n0, double sigmas) {
+  const int bins = static_cast<int>(hb.n.size());
+  // MD means in scaled units, and their errors.
+  std::vector<double> md_n, md_T, model_n, model_vx, model_vy, model_T;
+  for (int b = 0; b < bins; ++b) {
+    md_n.push_back(m->n.mean[b] / n0);
+    md_T.push_back(m->T.mean[b]);
+    const double count = m->count.mean[b];
+    // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
+    // ensemble calibration below corrects the level), in MD units like the ensemble's.
+    model_n.push_back(count > 0 ? m->n.mean[b] / std::sqrt(count) : kNaN);
+    model_vx.push_back(m->v_x_snapshot_error[b]);
+    model_vy.push_back(m->v_y_snapshot_error[b]);
+    model_T.push_back(m->T_snapshot_error[b]);
+  }
+  const double T_bar = mass_mean(md_n, md_T);
+  for (auto& f : fields) {
+    std::vector<double> hv, mv, err;
+    double scale = 1.0;  // n: the mean density n0
+    if (f.name == "n") {
+      hv = hb.n, mv = md_n, err = mean_error(model_n, m->n, f.error_source);
+      for (double& e : err) e /= n0;
+    } else if (f.name == "v_x") {
+      hv = hb.v_x, mv = m->v_x.mean, err = mean_error(model_vx, m->v_x, f.error_source);
+      scale = std::sqrt(T_bar);  // the thermal speed at this time
+    } else if (f.name == "v_y") {
+      hv = hb.v_y, mv = m->v_y.mean, err = mean_error(model_vy, m->v_y, f.error_source);
+      scale = std::sqrt(T_bar);
+    } else {
+      hv = hb.T, mv = md_T, err = mean_error(model_T, m->T, f.error_source);
+      scale = T_bar;  // the mean temperature at this time
+    }
+    f.track.at.push_back(compare::field_difference(hv, mv, err, scale, sigmas));
+    f.hydro.push_back(hv), f.md.push_back(mv), f.md_error.push_back(err);
+  }
+}
+
+// Peak density, |dv/dx| at the peak and the energies per particle, both engines on the bins.
+void record_peak_and_energies(CompareOutcome& out, const compare::BinnedFields& hb,
+                              const EnsembleSnapshot* m, double n0, int members) {
+  const int bins = static_cast<int>(hb.n.size());
+  std::vector<double> md_n, md_T;
+  for (int b = 0; b < bins; ++b) md_n.push_back(m->n.mean[b] / n0), md_T.push_back(m->T.mean[b]);
+  // Peak density and the velocity gradient there, on the bins.
+  const std::size_t hp = argmax(hb.n), mp = argmax(md_n);
+  out.hydro_n_peak.push_back(hb.n[hp]);
+  out.md_n_peak.push_back(md_n[mp]);
+  out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
+  out.hydro_dvdx_peak.push_back(std::abs(centred_slope(hb.v_x, hp)));
+  out.md_dvdx_peak.push_back(std::abs(centred_slope(m->v_x.mean, mp)));
+  // Energies per particle from the bins. The MD flow energy has the sampling noise of the bin
+  // means removed: E|v_b|^2 = v^2 + 2 T_b / N_b per bin for a mean over N_b particles
+  // (divided by the members for the ensemble mean).
+  double eth_h = 0, ekin_h = 0, eth_m = 0, ekin_m = 0, mass_m = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double dx = 1.0 / bins;
+    eth_h += hb.n[b] * hb.T[b] * dx;
+    ekin_h += 0.5 * hb.n[b] * (hb.v_x[b] * hb.v_x[b] + hb.v_y[b] * hb.v_y[b]) * dx;
+    const double vx = m->v_x.mean[b], vy = m->v_y.mean[b], count = m->count.mean[b];
+    if (!std::isfinite(vx) || !std::isfinite(md_T[b])) continue;
+    const double noise = count > 0 ? 2.0 * md_T[b] / (count * members) : 0.0;
+    mass_m += md_n[b] * dx;
+    eth_m += md_n[b] * md_T[b] * dx;
+    ekin_m += 0.5 * md_n[b] * (vx * vx + vy * vy - noise) * dx;
+  }
+  out.hydro_energy_thermal.push_back(eth_h);
+  out.hydro_energy_kinetic.push_back(ekin_h);
+  out.md_energy_thermal.push_back(eth_m / mass_m);
+  out.md_energy_kinetic.push_back(ekin_m / mass_m);
+}
+
+// Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
+// noise-born modes differ between seeds, so the mean field would average them away), and the
+// linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with exp(A s)
+// (hydro/linear_stability.hpp), rms over members.
+void compare_density_modes(
+    CompareOutcome& out, int modes, const hydro::Physics& physics, const MdOutcome& md_out,
+    const std::vector<std::pair<const EnsembleSnapshot*, const hydro::LagrangianState*>>& pairs,
+    double n0, int bins) {
+  const int members = static_cast<int>(md_out.runs.size());
+  for (int k = 1; k <= modes; ++k) {
+    out.theory_rate.push_back(hydro::hcs_modes(physics, k)[0].rate.real());
+  }
+  std::vector<std::vector<Eigen::Vector3cd>> initial(members);
+  for (int r = 0; r < members; ++r) {
+    const auto& f = md_out.runs[r].snapshots.front().fields;
+    for (int k = 1; k <= modes; ++k) {
+      initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
+    }
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto hb = compare::bin_lagrangian_state(*pairs[i].second, bins);
+    std::vector<double> hydro_row, md_row, md_err, theory_row;
+    const std::size_t s_index = pairs[i].first - md_out.snapshots.data();
+    for (int k = 1; k <= modes; ++k) {
+      hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
+      std::vector<std::vector<double>> power;  // one |n_k|^2 per member
+      double theory2 = 0.0;
+      for (int r = 0; r < members; ++r) {
+        const auto& snaps = md_out.runs[r].snapshots;
+        if (s_index >= snaps.size()) continue;
+        std::vector<double> relative;
+        for (double n : snaps[s_index].fields.n) relative.push_back(n / n0);
+        power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
+        const Eigen::Vector3cd evolved =
+            hydro::hcs_linear_evolution(physics, k, initial[r][k - 1], out.collision_clock[i]);
+        theory2 += std::norm(evolved[0]);
+      }
+      // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
+      const auto st = compare::ensemble_statistics(power);
+      const double rms = std::sqrt(st.mean[0]);
+      md_row.push_back(rms);
+      md_err.push_back(rms > 0 ? 0.5 * st.standard_error[0] / rms : kNaN);
+      theory_row.push_back(std::sqrt(theory2 / members));
+    }
+    out.hydro_modes.push_back(hydro_row);
+    out.md_modes.push_back(md_row);
+    out.md_modes_error.push_back(md_err);
+    out.theory_modes.push_back(theory_row);
+  }
+}
+
+// The verdict line and the kind of disagreement (CompareOutcome::disagreement).
+void write_verdict(CompareOutcome& out, double sigmas) {
+  constexpr double kClearSignal = 3.0;
+  if (!out.window.throughout && out.window.left_at) {
+    const auto k = std::find(out.t.begin(), out.t.end(), *out.window.left_at) - out.t.begin();
+    for (const auto& f : out.fields) {
+      if (f.name == out.window.first_out) out.offset_sigmas = box_mean_offset(f, k);
+    }
+  }
+  if (out.window.throughout) {
+    out.disagreement = "none";
+  } else if (out.signal_to_noise >= kClearSignal || std::abs(out.offset_sigmas) > sigmas) {
+    out.disagreement = "model";
+  } else {
+    out.disagreement = "noise";
+  }
+  std::ostringstream v;
+  v.precision(4);
+  const double last = out.t.empty() ? kNaN : out.t.back();
+  if (out.window.throughout) {
+    v << "fields agree within " << sigmas << " sigma at every compared time up to t = " << last;
+  } else if (out.window.until) {
+    v << "fields agree within " << sigmas << " sigma until t = " << *out.window.until
+      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at << ")";
+  } else if (out.window.left_at) {
+    v << "fields differ beyond " << sigmas << " sigma from the first compared time; "
+      << "worst: " << out.window.first_out;
+  } else {
+    v << "no common output time";
+  }
+  v << " [signal/noise " << out.signal_to_noise;
+  if (out.disagreement == "noise") {
+    v << ": the imposed flow is not well above the particles' noise and the box means agree, so "
+         "the difference is noise-driven, not a failure of the hydro";
+  } else if (out.disagreement == "model" && out.signal_to_noise >= kClearSignal) {
+    v << ": the signal is clear of the noise, so the difference is the hydro's";
+  } else if (out.disagreement == "model") {
+    v << "; the box mean of " << out.window.first_out << " is off by " << out.offset_sigmas
+      << " standard errors, which zero-mean noise cannot make: the difference is the hydro's";
+  }
+  v << "]";
+  out.verdict = v.str();
+}
+
 }  // namespace
 
 std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
@@ -197,67 +366,8 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     const double t = sc.scaled_time(m->t);
     out.t.push_back(t);
     const compare::BinnedFields hb = compare::bin_lagrangian_state(*h, bins);
-    // MD means in scaled units, and their errors.
-    std::vector<double> md_n, md_T, model_n, model_vx, model_vy, model_T;
-    for (int b = 0; b < bins; ++b) {
-      md_n.push_back(m->n.mean[b] / n0);
-      md_T.push_back(m->T.mean[b]);
-      const double count = m->count.mean[b];
-      // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
-      // ensemble calibration below corrects the level), in MD units like the ensemble's.
-      model_n.push_back(count > 0 ? m->n.mean[b] / std::sqrt(count) : kNaN);
-      model_vx.push_back(m->v_x_snapshot_error[b]);
-      model_vy.push_back(m->v_y_snapshot_error[b]);
-      model_T.push_back(m->T_snapshot_error[b]);
-    }
-    const double T_bar = mass_mean(md_n, md_T);
-    for (auto& f : out.fields) {
-      std::vector<double> hv, mv, err;
-      double scale = 1.0;  // n: the mean density n0
-      if (f.name == "n") {
-        hv = hb.n, mv = md_n, err = mean_error(model_n, m->n, f.error_source);
-        for (double& e : err) e /= n0;
-      } else if (f.name == "v_x") {
-        hv = hb.v_x, mv = m->v_x.mean, err = mean_error(model_vx, m->v_x, f.error_source);
-        scale = std::sqrt(T_bar);  // the thermal speed at this time
-      } else if (f.name == "v_y") {
-        hv = hb.v_y, mv = m->v_y.mean, err = mean_error(model_vy, m->v_y, f.error_source);
-        scale = std::sqrt(T_bar);
-      } else {
-        hv = hb.T, mv = md_T, err = mean_error(model_T, m->T, f.error_source);
-        scale = T_bar;  // the mean temperature at this time
-      }
-      f.track.at.push_back(compare::field_difference(hv, mv, err, scale, scene.sigmas));
-      f.hydro.push_back(hv), f.md.push_back(mv), f.md_error.push_back(err);
-    }
-
-    // Peak density and the velocity gradient there, on the bins.
-    const std::size_t hp = argmax(hb.n), mp = argmax(md_n);
-    out.hydro_n_peak.push_back(hb.n[hp]);
-    out.md_n_peak.push_back(md_n[mp]);
-    out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
-    out.hydro_dvdx_peak.push_back(std::abs(centred_slope(hb.v_x, hp)));
-    out.md_dvdx_peak.push_back(std::abs(centred_slope(m->v_x.mean, mp)));
-    // Energies per particle from the bins. The MD flow energy has the sampling noise of the bin
-    // means removed: E|v_b|^2 = v^2 + 2 T_b / N_b per bin for a mean over N_b particles
-    // (divided by the members for the ensemble mean).
-    double eth_h = 0, ekin_h = 0, eth_m = 0, ekin_m = 0, mass_m = 0;
-    for (int b = 0; b < bins; ++b) {
-      const double dx = 1.0 / bins;
-      eth_h += hb.n[b] * hb.T[b] * dx;
-      ekin_h += 0.5 * hb.n[b] * (hb.v_x[b] * hb.v_x[b] + hb.v_y[b] * hb.v_y[b]) * dx;
-      const double vx = m->v_x.mean[b], vy = m->v_y.mean[b], count = m->count.mean[b];
-      if (!std::isfinite(vx) || !std::isfinite(md_T[b])) continue;
-      const double noise = count > 0 ? 2.0 * md_T[b] / (count * members) : 0.0;
-      mass_m += md_n[b] * dx;
-      eth_m += md_n[b] * md_T[b] * dx;
-      ekin_m += 0.5 * md_n[b] * (vx * vx + vy * vy - noise) * dx;
-    }
-    out.hydro_energy_thermal.push_back(eth_h);
-    out.hydro_energy_kinetic.push_back(ekin_h);
-    out.md_energy_thermal.push_back(eth_m / mass_m);
-    out.md_energy_kinetic.push_back(ekin_m / mass_m);
-
+    compare_fields_at(out.fields, hb, m, n0, scene.sigmas);
+    record_peak_and_energies(out, hb, m, n0, members);
     // Flow by inertia on the same bins, before its singularity.
     if (smooth && t < 0.999 * inertia_tau) {
       const auto inertia = compare::bin_lagrangian_state(
@@ -273,51 +383,8 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     out.collision_clock.push_back(hydro::collision_clock(t, t0));
   }
 
-  // Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
-  // noise-born modes differ between seeds, so the mean field would average them away), and the
-  // linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with
-  // exp(A s) (hydro/linear_stability.hpp), rms over members.
   if (scene.density_modes > 0 && !pairs.empty()) {
-    for (int k = 1; k <= scene.density_modes; ++k) {
-      out.theory_rate.push_back(hydro::hcs_modes(hydro.physics, k)[0].rate.real());
-    }
-    std::vector<std::vector<Eigen::Vector3cd>> initial(members);
-    for (int r = 0; r < members; ++r) {
-      const auto& f = md_out.runs[r].snapshots.front().fields;
-      for (int k = 1; k <= scene.density_modes; ++k) {
-        initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
-      }
-    }
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const auto hb = compare::bin_lagrangian_state(*pairs[i].second, bins);
-      std::vector<double> hydro_row, md_row, md_err, theory_row;
-      const std::size_t s_index = pairs[i].first - md_out.snapshots.data();
-      for (int k = 1; k <= scene.density_modes; ++k) {
-        hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
-        std::vector<std::vector<double>> power;  // one |n_k|^2 per member
-        double theory2 = 0.0;
-        for (int r = 0; r < members; ++r) {
-          const auto& snaps = md_out.runs[r].snapshots;
-          if (s_index >= snaps.size()) continue;
-          std::vector<double> relative;
-          for (double n : snaps[s_index].fields.n) relative.push_back(n / n0);
-          power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
-          const Eigen::Vector3cd evolved = hydro::hcs_linear_evolution(
-              hydro.physics, k, initial[r][k - 1], out.collision_clock[i]);
-          theory2 += std::norm(evolved[0]);
-        }
-        // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
-        const auto st = compare::ensemble_statistics(power);
-        const double rms = std::sqrt(st.mean[0]);
-        md_row.push_back(rms);
-        md_err.push_back(rms > 0 ? 0.5 * st.standard_error[0] / rms : kNaN);
-        theory_row.push_back(std::sqrt(theory2 / members));
-      }
-      out.hydro_modes.push_back(hydro_row);
-      out.md_modes.push_back(md_row);
-      out.md_modes_error.push_back(md_err);
-      out.theory_modes.push_back(theory_row);
-    }
+    compare_density_modes(out, scene.density_modes, hydro.physics, md_out, pairs, n0, bins);
   }
 
   std::vector<compare::FieldTrack> tracks;
@@ -333,47 +400,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   }
   out.signal_to_noise = signal / noise;
 
-  constexpr double kClearSignal = 3.0;
-  if (!out.window.throughout && out.window.left_at) {
-    const auto k = std::find(out.t.begin(), out.t.end(), *out.window.left_at) - out.t.begin();
-    for (const auto& f : out.fields) {
-      if (f.name == out.window.first_out) out.offset_sigmas = box_mean_offset(f, k);
-    }
-  }
-  if (out.window.throughout) {
-    out.disagreement = "none";
-  } else if (out.signal_to_noise >= kClearSignal || std::abs(out.offset_sigmas) > scene.sigmas) {
-    out.disagreement = "model";
-  } else {
-    out.disagreement = "noise";
-  }
-  std::ostringstream v;
-  v.precision(4);
-  const double last = out.t.empty() ? kNaN : out.t.back();
-  if (out.window.throughout) {
-    v << "fields agree within " << scene.sigmas
-      << " sigma at every compared time up to t = " << last;
-  } else if (out.window.until) {
-    v << "fields agree within " << scene.sigmas << " sigma until t = " << *out.window.until
-      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at << ")";
-  } else if (out.window.left_at) {
-    v << "fields differ beyond " << scene.sigmas << " sigma from the first compared time; "
-      << "worst: " << out.window.first_out;
-  } else {
-    v << "no common output time";
-  }
-  v << " [signal/noise " << out.signal_to_noise;
-  if (out.disagreement == "noise") {
-    v << ": the imposed flow is not well above the particles' noise and the box means agree, so "
-         "the difference is noise-driven, not a failure of the hydro";
-  } else if (out.disagreement == "model" && out.signal_to_noise >= kClearSignal) {
-    v << ": the signal is clear of the noise, so the difference is the hydro's";
-  } else if (out.disagreement == "model") {
-    v << "; the box mean of " << out.window.first_out << " is off by " << out.offset_sigmas
-      << " standard errors, which zero-mean noise cannot make: the difference is the hydro's";
-  }
-  v << "]";
-  out.verdict = v.str();
+  write_verdict(out, scene.sigmas);
   return out;
 }
 
