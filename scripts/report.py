@@ -5,7 +5,7 @@
 
 Reads DIR/results.h5 (required, unless DIR holds a sweep) and DIR/summary.json (optional), writes the
 figures to DIR/figures/*.png and the page to DIR/report.html (rendered from
-scripts/report_template.html, written to a temporary file and renamed, so a
+scripts/report_template.html with the style of scripts/report_style.html, written to a temporary file and renamed, so a
 failed run never leaves a half-written page).
 
 Every figure is drawn only when its data are present, so the same script serves
@@ -2942,9 +2942,8 @@ class SweepCtx:
     pass
 
 
-def build_sweep(outdir, strict=False):
-    outdir = Path(outdir)
-    sw = load_sweep(outdir / "sweep.json")
+def figure_folder(outdir):
+    """DIR/figures, created, with DIR and it writable (else ReportError)."""
     figdir = outdir / "figures"
     try:
         figdir.mkdir(exist_ok=True)
@@ -2952,16 +2951,22 @@ def build_sweep(outdir, strict=False):
         raise ReportError(f"cannot create {figdir}: {e.strerror or e}")
     if not os.access(outdir, os.W_OK) or not os.access(figdir, os.W_OK):
         raise ReportError(f"{outdir} or {figdir} is not writable")
-    ctx = SweepCtx()
-    ctx.sw, ctx.outdir, ctx.figdir = sw, outdir, figdir
+    return figdir
+
+
+def draw_figures(specs, ctx, figdir, strict, list_skip=lambda fname: True):
+    """Each (file name, function) of specs drawn: (figures, skipped, failed). A skipped or failed
+    figure's stale PNG of an earlier run is removed; list_skip(fname) says whether a skip is worth
+    listing on the page."""
     figures, skipped, failed = [], [], []
-    for fname, fn in SWEEP_FIGURES:
+    for fname, fn in specs:
         try:
             figures.append(fn(ctx))
         except Skip as e:
-            skipped.append((fname, str(e)))
+            if list_skip(fname):
+                skipped.append((fname, str(e)))
             if (figdir / fname).exists():
-                (figdir / fname).unlink()
+                (figdir / fname).unlink()   # a stale figure of an earlier run must not linger
         except Exception as e:  # noqa: BLE001 - one broken figure must not sink the page
             plt.close("all")
             failed.append((fname, f"{type(e).__name__}: {e}"))
@@ -2970,23 +2975,14 @@ def build_sweep(outdir, strict=False):
                 traceback.print_exc()
             if (figdir / fname).exists():
                 (figdir / fname).unlink()
-    warn = []
-    if sw.get("status") not in ("ok", None):
-        warn.append(f"sweep status is '{sw.get('status')}': "
-                    + ("it is still running or was stopped; the page shows the points finished so far."
-                       if sw.get("status") == "running" else "at least one point failed (see its exit code)."))
-    rows, fit_rows, run = sweep_tables(ctx)
+    return figures, skipped, failed
+
+
+def write_page(outdir, template, **fields):
+    """Render template (beside this script) into DIR/report.html: a temporary file, renamed."""
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).resolve().parent),
                              autoescape=jinja2.select_autoescape(["html"]), undefined=jinja2.StrictUndefined)
-    html = env.get_template(SWEEP_TEMPLATE).render(
-        case=sw.get("case") or outdir.name, key=sw.get("key") or "", status=sw.get("status"),
-        run=run, verdicts=sweep_verdicts(sw), points=rows, fit=fit_rows,
-        figures=[{**f, "paper": Markup(f["paper"]), "note": f.get("note")} for f in figures],
-        skipped=skipped, failed=failed, warnings=warn,
-        raw=json.dumps({k: v for k, v in sw.items() if k != "points"}, indent=2),
-        generated=datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
-        source=str(outdir / "sweep.json"),
-    )
+    html = env.get_template(template).render(**fields)
     fd, tmp = tempfile.mkstemp(prefix=".report.", suffix=".html.tmp", dir=outdir)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
@@ -2996,6 +2992,31 @@ def build_sweep(outdir, strict=False):
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def build_sweep(outdir, strict=False):
+    outdir = Path(outdir)
+    sw = load_sweep(outdir / "sweep.json")
+    figdir = figure_folder(outdir)
+    ctx = SweepCtx()
+    ctx.sw, ctx.outdir, ctx.figdir = sw, outdir, figdir
+    figures, skipped, failed = draw_figures(SWEEP_FIGURES, ctx, figdir, strict)
+    warn = []
+    if sw.get("status") not in ("ok", None):
+        warn.append(f"sweep status is '{sw.get('status')}': "
+                    + ("it is still running or was stopped; the page shows the points finished so far."
+                       if sw.get("status") == "running" else "at least one point failed (see its exit code)."))
+    rows, fit_rows, run = sweep_tables(ctx)
+    write_page(
+        outdir, SWEEP_TEMPLATE,
+        case=sw.get("case") or outdir.name, key=sw.get("key") or "", status=sw.get("status"),
+        run=run, verdicts=sweep_verdicts(sw), points=rows, fit=fit_rows,
+        figures=[{**f, "paper": Markup(f["paper"]), "note": f.get("note")} for f in figures],
+        skipped=skipped, failed=failed, warnings=warn,
+        raw=json.dumps({k: v for k, v in sw.items() if k != "points"}, indent=2),
+        generated=datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
+        source=str(outdir / "sweep.json"),
+    )
     return figures, skipped, failed
 
 
@@ -3021,36 +3042,16 @@ def build(outdir, strict=False):
             cfg = tomllib.loads(cfg_text)
         except Exception as e:  # noqa: BLE001 - any parse problem is only a warning here
             warnings.append(f"config_toml in results.h5 does not parse as TOML ({e}).")
-    figdir = outdir / "figures"
-    try:
-        figdir.mkdir(exist_ok=True)
-    except OSError as e:
-        raise ReportError(f"cannot create {figdir}: {e.strerror or e}")
-    if not os.access(outdir, os.W_OK) or not os.access(figdir, os.W_OK):
-        raise ReportError(f"{outdir} or {figdir} is not writable")
+    figdir = figure_folder(outdir)
 
     ctx = Ctx()
     ctx.res, ctx.s, ctx.cfg, ctx.figdir = res, s, cfg, figdir
-    figures, skipped, failed = [], [], []
     has_md = bool(res.get("md") or res.get("md_ts") or res.get("md_fields") or s.get("md"))
     has_cmp = bool(res.get("cmp") or s.get("compare"))
-    for fname, fn in FIGURES:
-        try:
-            figures.append(fn(ctx))
-        except Skip as e:
-            # no particle run: no MD entries at all; no comparison: no side-by-side entries
-            if not ((fname.startswith("md") and not has_md) or (fname.startswith("cmp") and not has_cmp)):
-                skipped.append((fname, str(e)))
-            if (figdir / fname).exists():
-                (figdir / fname).unlink()   # a stale figure of an earlier run must not linger
-        except Exception as e:  # noqa: BLE001 - one broken figure must not sink the page
-            plt.close("all")
-            failed.append((fname, f"{type(e).__name__}: {e}"))
-            print(f"{PROG}: warning: {fname} failed: {type(e).__name__}: {e}", file=sys.stderr)
-            if strict:
-                traceback.print_exc()
-            if (figdir / fname).exists():
-                (figdir / fname).unlink()
+    # no particle run: no MD entries at all; no comparison: no side-by-side entries
+    figures, skipped, failed = draw_figures(
+        FIGURES, ctx, figdir, strict,
+        list_skip=lambda f: not ((f.startswith("md") and not has_md) or (f.startswith("cmp") and not has_cmp)))
 
     if isinstance(cfg_text, str) and cfg_text.strip():
         config_block = cfg_text.rstrip()
@@ -3058,9 +3059,8 @@ def build(outdir, strict=False):
         config_block = "\n".join(f"{k} = {v}" for k, v in sorted(res["attrs"].items())
                                  if k not in ("config_toml",)) or "(no configuration stored in results.h5)"
 
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).resolve().parent),
-                             autoescape=jinja2.select_autoescape(["html"]), undefined=jinja2.StrictUndefined)
-    html = env.get_template(TEMPLATE).render(
+    write_page(
+        outdir, TEMPLATE,
         case=s.get("case") or res["attrs"].get("case") or outdir.name,
         status=s.get("status"),
         header=header_rows(res, s, cfg),
@@ -3076,15 +3076,6 @@ def build(outdir, strict=False):
         generated=datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
         source=str(h5),
     )
-    fd, tmp = tempfile.mkstemp(prefix=".report.", suffix=".html.tmp", dir=outdir)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(html)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, outdir / "report.html")
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
     return figures, skipped, failed
 
 
