@@ -391,14 +391,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   for (const auto& f : out.fields) tracks.push_back(f.track);
   out.window = compare::agreement_window(out.t, tracks, scene.agreement_fraction);
 
-  // DESIGN.md §8: the thermal velocity noise on the bin scale against the imposed flow.
-  const double bin = sc.box_length / bins;
-  const double noise = 1.0 / std::sqrt(n0 * sc.box_width * bin);
-  double signal = 0.0;
-  for (int i = 0; i < 4096; ++i) {
-    signal = std::max(signal, std::abs(md.spec.fields.v(-0.5 + (i + 0.5) / 4096)));
-  }
-  out.signal_to_noise = signal / noise;
+  out.signal_to_noise = initial_signal_to_noise(md).ratio();
 
   write_verdict(out, scene.sigmas);
   return out;

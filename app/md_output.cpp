@@ -28,14 +28,7 @@ void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome
 
 json md_summary(const MdScene& scene, const MdOutcome& out) {
   const auto& sc = scene.spec.scene;
-  // DESIGN.md §8: thermal velocity noise on the coarse-graining scale l = Lx/bins is
-  // (n0 Ly l)^{-1/2} sqrt(T0/m); the imposed signal is the largest initial flow speed.
-  const double bin = sc.box_length / scene.spec.bins;
-  const double noise = 1.0 / std::sqrt(sc.number_density() * sc.box_width * bin);
-  double signal = 0.0;
-  for (int i = 0; i < 4096; ++i) {
-    signal = std::max(signal, std::abs(scene.spec.fields.v(-0.5 + (i + 0.5) / 4096)));
-  }
+  const SignalToNoise sn = initial_signal_to_noise(scene);
   const auto physics = sc.physics();
   long long steps = 0;
   int changes = 0;
@@ -76,9 +69,9 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
       {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
       {"snapshot_times", snaps},
-      {"noise_velocity_initial", noise},
-      {"signal_velocity_initial", signal},
-      {"signal_to_noise_initial", signal / noise},
+      {"noise_velocity_initial", sn.noise},
+      {"signal_velocity_initial", sn.signal},
+      {"signal_to_noise_initial", sn.ratio()},
   };
 }
 

@@ -4,12 +4,34 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/restitution_calibration.hpp"
 
 namespace granvv::app {
+
+namespace {
+
+// The largest value of f on 4096 cell centres of [-1/2, 1/2).
+double sampled_maximum(const std::function<double(double)>& f) {
+  double largest = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4096; ++i) largest = std::max(largest, f(-0.5 + (i + 0.5) / 4096));
+  return largest;
+}
+
+}  // namespace
+
+SignalToNoise initial_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  const double bin = sc.box_length / scene.spec.bins;
+  SignalToNoise s;
+  s.noise = 1.0 / std::sqrt(sc.number_density() * sc.box_width * bin);
+  s.signal =
+      std::max(0.0, sampled_maximum([&](double x) { return std::abs(scene.spec.fields.v(x)); }));
+  return s;
+}
 
 std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
   if (!c.boolean("md.enabled")) return std::nullopt;
@@ -59,8 +81,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
   }
   // The densest point of the initial profile must still take disks without overlap.
-  double n_max = 0.0;
-  for (int i = 0; i < 4096; ++i) n_max = std::max(n_max, spec.fields.n(-0.5 + (i + 0.5) / 4096));
+  const double n_max = std::max(0.0, sampled_maximum(spec.fields.n));
   if (n_max * spec.scene.area_fraction > 0.5) {
     throw ConfigError(c.origin("md.area_fraction") +
                       ": md.area_fraction = " + format_real(spec.scene.area_fraction) +

@@ -32,6 +32,14 @@ struct EnsembleSnapshot {
   std::vector<double> v_x_snapshot_error, v_y_snapshot_error, T_snapshot_error;
 };
 
+// DESIGN.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
+// (n0 Ly l)^{-1/2} sqrt(T0/m), against the imposed signal, the largest initial flow speed.
+struct SignalToNoise {
+  double signal = 0.0, noise = 0.0;
+  double ratio() const { return signal / noise; }
+};
+SignalToNoise initial_signal_to_noise(const MdScene& scene);
+
 struct MdOutcome {
   std::vector<md::MdRunResult> runs;
   double restitution_measured = 0.0;

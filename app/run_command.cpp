@@ -9,10 +9,10 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 
+#include "app/atomic_file.hpp"
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
 #include "app/compare_output.hpp"
@@ -29,17 +29,6 @@ namespace granvv::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Write-then-rename, so a reader never sees half a file.
-void write_file_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".partial";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
-}
 
 std::shared_ptr<spdlog::logger> make_logger(const fs::path& log_file, bool quiet) {
   auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "app/atomic_file.hpp"
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
 #include "app/compare_scene.hpp"
@@ -82,16 +83,6 @@ std::string folder_name(const std::string& key, const std::string& value) {
     if (c == '/' || c == '\\' || c == ' ') c = '_';
   }
   return s;
-}
-
-void write_json(const fs::path& path, const json& j) {
-  const fs::path tmp = path.string() + ".partial";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
 }
 
 json value_or_null(const json& j, const char* key) {
@@ -245,7 +236,7 @@ int sweep_command(const SweepOptions& options) {
     }
     sweep["wall_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_json(dir / "sweep.json", sweep);
+    write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
   }
   try {
     sweep["cooling"] = cooling_analysis(sweep["points"], options.power_r_min, 3.0);
@@ -253,7 +244,7 @@ int sweep_command(const SweepOptions& options) {
     sweep["cooling_error"] = e.what();
   }
   sweep["status"] = exit_code == 0 ? "ok" : "failed";
-  write_json(dir / "sweep.json", sweep);
+  write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
   if (sweep["cooling"].is_object() && sweep["cooling"]["power_of_one_minus_r2"].is_object()) {
     const auto& p = sweep["cooling"]["power_of_one_minus_r2"];
     std::cerr << "sweep: cooling rate ~ (1 - r^2)^p with p = " << p["power"].get<double>() << " +- "
