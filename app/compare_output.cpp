@@ -25,10 +25,20 @@ void write_rows(H5::Group& g, const std::string& name,
   if (!rows.empty()) write_matrix(g, name, flatten(rows), rows.size());
 }
 
-template <typename F>
-std::vector<double> per_time(const compare::FieldTrack& track, F member) {
+// The per-time metrics of a field, by the name both outputs use (summary.json, results.h5).
+using Metric = double compare::FieldDifference::*;
+const std::vector<std::pair<const char*, Metric>> kMetrics = {
+    {"l1", &compare::FieldDifference::l1},
+    {"l2", &compare::FieldDifference::l2},
+    {"linf", &compare::FieldDifference::linf},
+    {"fraction_within", &compare::FieldDifference::fraction_within},
+    {"worst_z", &compare::FieldDifference::worst_z},
+    {"scale", &compare::FieldDifference::scale},
+};
+
+std::vector<double> per_time(const compare::FieldTrack& track, Metric metric) {
   std::vector<double> v;
-  for (const auto& d : track.at) v.push_back(d.*member);
+  for (const auto& d : track.at) v.push_back(d.*metric);
   return v;
 }
 
@@ -58,16 +68,9 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   const auto& sc = md.spec.scene;
   json fields = json::object();
   for (const auto& f : out.fields) {
-    using FD = compare::FieldDifference;
-    fields[f.name] = {
-        {"l1", numbers(per_time(f.track, &FD::l1))},
-        {"l2", numbers(per_time(f.track, &FD::l2))},
-        {"linf", numbers(per_time(f.track, &FD::linf))},
-        {"fraction_within", numbers(per_time(f.track, &FD::fraction_within))},
-        {"worst_z", numbers(per_time(f.track, &FD::worst_z))},
-        {"scale", numbers(per_time(f.track, &FD::scale))},
-        {"error_source", f.error_source},
-    };
+    json& entry = fields[f.name];
+    for (const auto& [name, metric] : kMetrics) entry[name] = numbers(per_time(f.track, metric));
+    entry["error_source"] = f.error_source;
   }
   const auto& run = hydro_out.run;
   const double cell_steps = double(run.steps) * hydro.cells;
@@ -163,13 +166,7 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
     write_rows(fg, "hydro", f.hydro);
     write_rows(fg, "md", f.md);
     write_rows(fg, "md_error", f.md_error);
-    using FD = compare::FieldDifference;
-    write_vector(fg, "l1", per_time(f.track, &FD::l1));
-    write_vector(fg, "l2", per_time(f.track, &FD::l2));
-    write_vector(fg, "linf", per_time(f.track, &FD::linf));
-    write_vector(fg, "fraction_within", per_time(f.track, &FD::fraction_within));
-    write_vector(fg, "worst_z", per_time(f.track, &FD::worst_z));
-    write_vector(fg, "scale", per_time(f.track, &FD::scale));
+    for (const auto& [name, metric] : kMetrics) write_vector(fg, name, per_time(f.track, metric));
   }
   H5::Group peak = h5.createGroup("/compare/peak");
   write_vector(peak, "hydro_n", out.hydro_n_peak);
