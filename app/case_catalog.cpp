@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/case_config.hpp"
+#include "app/data_directory.hpp"
 #include "embedded_cases.hpp"
 
 namespace granvv::app {
@@ -15,7 +16,7 @@ namespace fs = std::filesystem;
 
 fs::path cases_directory() {
   if (const char* env = std::getenv("GRANVV_CASES_DIR")) return env;
-  return fs::path(GRANVV_SOURCE_DIR) / "cases";
+  return data_directory() / "cases";
 }
 
 CaseSource locate_case(const std::string& name) {

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/case_catalog.hpp"
+#include "app/case_config.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
@@ -66,7 +67,14 @@ int main(int argc, char** argv) {
     return sweep_command(sweep);
   }
   if (*list_cmd) {
-    for (const auto& s : list_scenes()) {
+    std::vector<SceneListing> scenes;
+    try {
+      scenes = list_scenes();
+    } catch (const ConfigError& e) {
+      std::cerr << "granvv: error: " << e.what() << "\n";
+      return 2;
+    }
+    for (const auto& s : scenes) {
       std::cout << s.name << "  " << s.description;
       if (!s.reference.empty()) std::cout << "  [" << s.reference << "]";
       std::cout << "\n";

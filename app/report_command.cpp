@@ -1,7 +1,11 @@
 #include "app/report_command.hpp"
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
+
+#include "app/case_config.hpp"
+#include "app/data_directory.hpp"
 
 namespace granvv::app {
 
@@ -16,7 +20,13 @@ std::string shell_quote(const std::string& s) {
 int build_report(const std::filesystem::path& dir) {
   const char* env = std::getenv("GRANVV_PYTHON");
   const std::string python = env ? env : "/usr/bin/python3";
-  const std::string script = std::string(GRANVV_SOURCE_DIR) + "/scripts/report.py";
+  std::string script;
+  try {
+    script = (data_directory() / "scripts" / "report.py").string();
+  } catch (const ConfigError& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 2;
+  }
   const std::string command =
       shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(dir.string());
   const int status = std::system(command.c_str());
