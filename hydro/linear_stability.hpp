@@ -21,14 +21,14 @@
 // the linearised loss -(8q/K)(n^2 T^{3/2} - T_H^{3/2}) relative to Haff cooling, -i kx w the
 // compressional heating -n T v_x and -K kx^2 theta the heat conduction.
 //
-// det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e. mode k is
-// unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
+// Dilute closure: det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e.
+// mode k is unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
 // stability boundary (no complex pair crosses the imaginary axis) follows from Routh-Hurwitz:
 // for K kx^2 > eps the Hurwitz condition a2 a1 > a0 holds for every kx iff q <= 1/3. For
 // q > 1/3 (restitution r < 1/3, far outside the model's q << 1) a band of wave numbers just
 // above the cutoff is oscillatory-unstable; the mode counts below use the paper's criterion.
 //
-// Long waves (kx << eps, K kx^2 << eps): rates eps - kx^2 (K/4 + 1/(2 eps)) (velocity mode:
+// Dilute long waves (kx << eps, K kx^2 << eps): rates eps - kx^2 (K/4 + 1/(2 eps)) (velocity mode:
 // matter moves by inertia, u ~ const), -kx^2/eps (density mode with theta = -2 nu, frozen at
 // leading order) and -eps + kx^2 (3/(2 eps) - K) (temperature mode). Short waves
 // (eps << kx << 1/K): sound +-i sqrt(2) kx - eps/4 - 3 K kx^2/8 (2D adiabatic index 2) and the
