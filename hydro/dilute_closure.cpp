@@ -16,11 +16,13 @@ void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::v
   out.shear_viscosity.resize(cells);
   out.conductivity.resize(cells);
   for (size_t i = 0; i < cells; ++i) {
-    out.pressure[i] = pressure(n[i], T[i]);
-    out.adiabatic_modulus[i] = adiabatic_modulus(n[i], T[i]);
-    out.viscosity[i] = viscosity(T[i]);
-    out.shear_viscosity[i] = out.viscosity[i];
-    out.conductivity[i] = conductivity(T[i]);
+    const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
+    out.pressure[i] = pressure(ni, Ti);
+    out.adiabatic_modulus[i] = adiabatic_modulus(ni, Ti);
+    const double eta = viscosity(Ti);
+    out.viscosity[i] = eta;
+    out.shear_viscosity[i] = eta;
+    out.conductivity[i] = conductivity(Ti);
   }
 }
 

@@ -25,10 +25,4 @@ double collision_clock(double t, double t0) {
   return t0 * std::log1p(t / t0);
 }
 
-double cool_exactly(double T, double n, double c, double dt) {
-  // d(T^{-1/2})/dt = c n / 2, so T^{-1/2} grows linearly in time.
-  const double g = 1.0 + 0.5 * c * n * std::sqrt(T) * dt;
-  return T / (g * g);
-}
-
 }  // namespace granvv::hydro

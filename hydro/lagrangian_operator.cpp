@@ -39,9 +39,10 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   closure_.cell_coefficients(out.density, T, out.cell);
   const CellCoefficients& cell = out.cell;
   for (int i = 0; i < n_; ++i) {
-    out.viscous_coupling[i] = cell.viscosity[i] / widths[i];
-    out.shear_coupling[i] = cell.shear_viscosity[i] / widths[i];
-    out.acoustic_coupling[i] = 0.5 * cell.adiabatic_modulus[i] * dt / widths[i];
+    const double w = widths[i];
+    out.viscous_coupling[i] = cell.viscosity[i] / w;
+    out.shear_coupling[i] = cell.shear_viscosity[i] / w;
+    out.acoustic_coupling[i] = 0.5 * cell.adiabatic_modulus[i] * dt / w;
   }
   // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
   // over the centre-to-centre distance h_j.
