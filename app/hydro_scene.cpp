@@ -79,12 +79,13 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {
   HydroOutcome out;
   const auto& physics = scene.physics;
+  const auto closure = hydro::make_closure("dilute", {physics, {}});
   out.fields =
       scene.given_fields ? *scene.given_fields : hydro::make_initial_fields(scene.initial, physics);
   out.unstable_modes = hydro::clustering_unstable_modes(physics);
   out.shear_unstable_modes = hydro::shear_unstable_modes(physics);
   out.run = hydro::run_hydro(
-      physics, hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse),
+      *closure, hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse),
       scene.control, progress);
   const auto& run = out.run;
 
@@ -143,14 +144,14 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   if (scene.initial.type == "linear_mode") {
     std::vector<hydro::LagrangianState> states;
     for (const auto& snap : run.snapshots) states.push_back(snap.state);
-    out.linear_rate = hydro::measure_linear_rate(states, physics, scene.initial.mode,
+    out.linear_rate = hydro::measure_linear_rate(states, *closure, scene.initial.mode,
                                                  scene.initial.linear_branch);
   }
   if (scene.convergence_cells.size() >= 3) {
     auto time_step = scene.control.time_step;
     time_step.cfl = scene.convergence_cfl;
     out.convergence =
-        hydro::run_convergence_study(physics, out.fields, scene.convergence_cells,
+        hydro::run_convergence_study(*closure, out.fields, scene.convergence_cells,
                                      scene.node_offset, scene.convergence_t, time_step);
   }
   return out;

@@ -8,27 +8,16 @@
 #include "app/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
+#include "hydro/time_series.hpp"
 
 namespace granvv::app {
 namespace {
 
-void write_time_series(H5::Group g, const hydro::TimeSeries& ts, double t0) {
-  write_vector(g, "t", ts.t);
-  write_vector(g, "dt", ts.dt);
-  write_vector(g, "n_max", ts.n_max);
-  write_vector(g, "x_peak", ts.x_peak);
-  write_vector(g, "dvdx_peak", ts.dvdx_peak);
-  write_vector(g, "T_min", ts.T_min);
-  write_vector(g, "T_mean", ts.T_mean);
-  write_vector(g, "energy", ts.energy);
-  write_vector(g, "energy_thermal", ts.energy_thermal);
-  write_vector(g, "energy_kinetic", ts.energy_kinetic);
-  write_vector(g, "energy_kinetic_y", ts.energy_kinetic_y);
-  write_vector(g, "energy_cooled", ts.energy_cooled);
-  write_vector(g, "momentum", ts.momentum);
-  std::vector<double> haff;
-  for (double t : ts.t) haff.push_back(hydro::haff_temperature(t, t0));
-  write_vector(g, "haff_T", haff);
+// One dataset per column of hydro/time_series.hpp, in its order.
+void write_time_series(H5::Group g, const hydro::TimeSeries& ts) {
+  for (const auto& column : hydro::time_series_columns()) {
+    write_vector(g, column.name, ts.*column.values);
+  }
 }
 
 // The FieldSeries (cell centres; v averaged from the two nodes) and the Lagrangian arrays.
@@ -119,8 +108,7 @@ void write_results_file(const std::filesystem::path& file, const RunMetadata& me
   for (const auto& [key, value] : meta.config) write_attribute(root, key, value);
 
   H5::Group hydro_group = h5.createGroup("/hydro");
-  write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series,
-                    hydro::haff_time_scale(scene.physics));
+  write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series);
   write_snapshots(h5.createGroup("/hydro/fields"), h5.createGroup("/hydro/lagrangian"), out);
   write_theory(h5.createGroup("/hydro/theory"), scene, out);
   if (out.convergence) write_convergence(h5.createGroup("/hydro/convergence"), *out.convergence);

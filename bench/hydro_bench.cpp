@@ -7,6 +7,7 @@
 
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
+#include "hydro/dilute_closure.hpp"
 #include "hydro/integrator.hpp"
 #include "hydro/periodic_tridiagonal.hpp"
 
@@ -25,11 +26,12 @@ granvv::app::HydroScene single_mode_scene(int cells) {
 void SingleModeToSingularity(benchmark::State& state) {
   const auto scene = single_mode_scene(static_cast<int>(state.range(0)));
   const auto fields = granvv::hydro::make_initial_fields(scene.initial, scene.physics);
+  const granvv::hydro::DiluteClosure closure(scene.physics);
   long long steps = 0;
   double tau = 0;
   for (auto _ : state) {
     auto initial = granvv::hydro::discretize(fields, scene.cells, scene.node_offset, false);
-    const auto run = granvv::hydro::run_hydro(scene.physics, std::move(initial), scene.control);
+    const auto run = granvv::hydro::run_hydro(closure, std::move(initial), scene.control);
     steps = run.steps;
     tau = run.series.t.back();
     benchmark::DoNotOptimize(run.series.n_max.back());
@@ -46,7 +48,8 @@ void IntegratorStep(benchmark::State& state) {
   const auto scene = single_mode_scene(static_cast<int>(state.range(0)));
   auto s = granvv::hydro::discretize(
       granvv::hydro::make_initial_fields(scene.initial, scene.physics), scene.cells, 0.5, false);
-  granvv::hydro::HydroIntegrator integrator(scene.physics, scene.cells);
+  const granvv::hydro::DiluteClosure closure(scene.physics);
+  granvv::hydro::HydroIntegrator integrator(closure, scene.cells);
   for (auto _ : state) {
     auto copy = s;
     benchmark::DoNotOptimize(integrator.step(copy, 1e-5).accepted);

@@ -56,7 +56,7 @@ std::string convergence_mesh_problem(const std::vector<int>& cells, double node_
   return "";
 }
 
-ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFields& fields,
+ConvergenceStudy run_convergence_study(const Closure& closure, const InitialFields& fields,
                                        const std::vector<int>& cells, double node_offset, double t,
                                        const TimeStepControl& base) {
   const auto start = std::chrono::steady_clock::now();
@@ -74,7 +74,7 @@ ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFiel
     control.stop_density = 1e300;
     control.min_cell_width = 0.0;
     control.series_every = 1 << 30;
-    finals.push_back(run_hydro(physics, discretize(fields, n, node_offset, false), control)
+    finals.push_back(run_hydro(closure, discretize(fields, n, node_offset, false), control)
                          .snapshots.back()
                          .state);
   }

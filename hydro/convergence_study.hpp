@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/initial_conditions.hpp"
-#include "hydro/physics.hpp"
 #include "hydro/time_step.hpp"
 
 namespace granvv::hydro {
@@ -27,7 +27,7 @@ struct ConvergenceStudy {
 // Returns an explanation if these meshes do not nest (an empty string if they do).
 std::string convergence_mesh_problem(const std::vector<int>& cells, double node_offset);
 
-ConvergenceStudy run_convergence_study(const Physics& physics, const InitialFields& fields,
+ConvergenceStudy run_convergence_study(const Closure& closure, const InitialFields& fields,
                                        const std::vector<int>& cells, double node_offset, double t,
                                        const TimeStepControl& base);
 

@@ -4,25 +4,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "hydro/haff.hpp"
 #include "hydro/integrator.hpp"
 
 namespace granvv::hydro {
-
-void TimeSeries::record(double time, double step, const Diagnostics& d, double cooled) {
-  t.push_back(time);
-  dt.push_back(step);
-  n_max.push_back(d.n_max);
-  x_peak.push_back(d.x_peak);
-  dvdx_peak.push_back(d.dvdx_peak);
-  T_min.push_back(d.T_min);
-  T_mean.push_back(d.T_mean);
-  energy.push_back(d.energy());
-  energy_thermal.push_back(d.energy_thermal);
-  energy_kinetic.push_back(d.energy_kinetic);
-  energy_kinetic_y.push_back(d.energy_kinetic_y);
-  energy_cooled.push_back(cooled);
-  momentum.push_back(d.momentum);
-}
 
 std::string to_string(RunStatus s) {
   switch (s) {
@@ -47,17 +32,22 @@ double crossing_time(double t0, double n0, double t1, double n1, double level) {
 
 }  // namespace
 
-RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl& control,
+RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl& control,
                     const ProgressCallback& progress) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto wall = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
 
   RunResult result;
-  HydroIntegrator integrator(physics, s.cells());
+  HydroIntegrator integrator(closure, s.cells());
+  TimeStepLimiter limiter(closure, control.time_step);
+  const double t0 = haff_time_scale(closure);
   const Diagnostics d0 = diagnose(s);
   double cooled = 0.0;
-  result.series.record(s.t, 0.0, d0, cooled);
+  auto record = [&](double step, const Diagnostics& now) {
+    result.series.record({s.t, step, now, cooled, haff_temperature(s.t, t0)});
+  };
+  record(0.0, d0);
   result.snapshots.push_back({"initial", s});
 
   std::vector<double> outputs;
@@ -83,7 +73,7 @@ RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl&
       result.stop_reason = "end time reached";
       break;
     }
-    limit = time_step_limit(s, control.time_step);
+    limit = limiter.limit(s);
     if (heating_limit < limit.dt) limit = {heating_limit, "heating"};
     double dt = limit.dt;
     bool clamped = false;
@@ -127,7 +117,7 @@ RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl&
     }
     const bool singular = d.n_max >= control.stop_density || d.min_width <= control.min_cell_width;
     if (result.steps % control.series_every == 0 || singular || lands_on_output) {
-      result.series.record(s.t, dt, d, cooled);
+      record(dt, d);
     }
     if (lands_on_output) {
       result.snapshots.push_back({"output", s});
@@ -150,7 +140,7 @@ RunResult run_hydro(const Physics& physics, LagrangianState s, const RunControl&
       break;
     }
   }
-  if (result.series.t.back() != s.t) result.series.record(s.t, 0.0, d, cooled);
+  if (result.series.t.back() != s.t) record(0.0, d);
   if (result.snapshots.back().state.t != s.t || result.snapshots.size() == 1) {
     result.snapshots.push_back({"final", s});
   }

@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/diagnostics.hpp"
 #include "hydro/lagrangian_state.hpp"
-#include "hydro/physics.hpp"
+#include "hydro/time_series.hpp"
 #include "hydro/time_step.hpp"
 
 namespace granvv::hydro {
@@ -22,12 +23,6 @@ struct RunControl {
   double min_cell_width = 1e-14;  // singularity: a cell gets this thin
   std::vector<double> crossing_densities = {10.0, 100.0, 1000.0, 1e6};
   int series_every = 1;
-};
-
-struct TimeSeries {
-  std::vector<double> t, dt, n_max, x_peak, dvdx_peak, T_min, T_mean, energy, energy_thermal,
-      energy_kinetic, energy_kinetic_y, energy_cooled, momentum;
-  void record(double time, double step, const Diagnostics& d, double cooled);
 };
 
 struct Snapshot {
@@ -60,7 +55,7 @@ struct Progress {
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
-RunResult run_hydro(const Physics& physics, LagrangianState initial, const RunControl& control,
+RunResult run_hydro(const Closure& closure, LagrangianState initial, const RunControl& control,
                     const ProgressCallback& progress = {});
 
 }  // namespace granvv::hydro

@@ -2,10 +2,16 @@
 
 #include <cmath>
 
+#include "hydro/dilute_closure.hpp"
+
 namespace granvv::hydro {
 
+double haff_time_scale(const Closure& closure) {
+  return closure.hcs_linearisation().haff_time;
+}
+
 double haff_time_scale(const Physics& physics) {
-  return physics.K / (4.0 * physics.q);
+  return haff_time_scale(DiluteClosure(physics));
 }
 
 double haff_temperature(double t, double t0) {
@@ -17,16 +23,6 @@ double collision_clock(double t, double t0) {
   if (std::isinf(t0)) return t;
   // log1p keeps s = t (1 - t/(2 t0) + ...) accurate for t << t0.
   return t0 * std::log1p(t / t0);
-}
-
-double cooling_rate_coefficient(const Physics& physics) {
-  return 8.0 * physics.q / physics.K;
-}
-
-double cool_exactly(double T, double n, double c, double dt) {
-  // d(T^{-1/2})/dt = c n / 2, so T^{-1/2} grows linearly in time.
-  const double g = 1.0 + 0.5 * c * n * std::sqrt(T) * dt;
-  return T / (g * g);
 }
 
 }  // namespace granvv::hydro

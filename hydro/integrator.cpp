@@ -2,29 +2,28 @@
 
 #include <algorithm>
 
-#include "hydro/haff.hpp"
-
 namespace granvv::hydro {
 
-double cool_cells(const Physics& physics, LagrangianState& s, double dt) {
-  const double c = cooling_rate_coefficient(physics);
+double HydroIntegrator::cool_cells(LagrangianState& s, double dt) {
+  const int cells = s.cells();
+  density_.resize(cells);
+  for (int i = 0; i < cells; ++i) density_[i] = s.cell_mass[i] / cell_width(s, i);
+  closure_.cool(density_, s.cell_T, dt, cooled_T_);
   double removed = 0.0;
-  for (int i = 0; i < s.cells(); ++i) {
-    const double n = s.cell_mass[i] / cell_width(s, i);
-    const double T = cool_exactly(s.cell_T[i], n, c, dt);
-    removed += s.cell_mass[i] * (s.cell_T[i] - T);
-    s.cell_T[i] = T;
+  for (int i = 0; i < cells; ++i) {
+    removed += s.cell_mass[i] * (s.cell_T[i] - cooled_T_[i]);
+    s.cell_T[i] = cooled_T_[i];
   }
   return removed;
 }
 
-HydroIntegrator::HydroIntegrator(const Physics& physics, int cells)
-    : physics_(physics), op_(physics, cells) {}
+HydroIntegrator::HydroIntegrator(const Closure& closure, int cells)
+    : closure_(closure), op_(closure, cells) {}
 
 StepOutcome HydroIntegrator::step(LagrangianState& s, double dt) {
   StepOutcome out;
   start_ = s;
-  out.energy_cooled = cool_cells(physics_, start_, 0.5 * dt);
+  out.energy_cooled = cool_cells(start_, 0.5 * dt);
 
   // Predictor: coefficients at the start of the step.
   cell_widths(start_, widths_);
@@ -44,7 +43,7 @@ StepOutcome HydroIntegrator::step(LagrangianState& s, double dt) {
   if (!op_.advance(start_, coefficients_, dt, corrected_)) return out;
   out.relative_heating = op_.last_relative_temperature_change();
 
-  out.energy_cooled += cool_cells(physics_, corrected_, 0.5 * dt);
+  out.energy_cooled += cool_cells(corrected_, 0.5 * dt);
   std::swap(s, corrected_);
   out.accepted = true;
   return out;

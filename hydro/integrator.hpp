@@ -5,9 +5,9 @@
 //   start state and the predictor's end state.
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/lagrangian_operator.hpp"
 #include "hydro/lagrangian_state.hpp"
-#include "hydro/physics.hpp"
 
 namespace granvv::hydro {
 
@@ -17,21 +17,22 @@ struct StepOutcome {
   double relative_heating = 0.0;  // largest |dT/T| from work and conduction (not cooling)
 };
 
-// Cool every cell exactly at its fixed density for dt; returns the energy removed.
-double cool_cells(const Physics& physics, LagrangianState& s, double dt);
-
 class HydroIntegrator {
  public:
-  HydroIntegrator(const Physics& physics, int cells);
+  // The closure must outlive the integrator.
+  HydroIntegrator(const Closure& closure, int cells);
   // Advance s by dt. On rejection (T <= 0, tangled mesh) s is left unchanged.
   StepOutcome step(LagrangianState& s, double dt);
 
  private:
-  Physics physics_;
+  // Cool every cell exactly at its fixed density for dt; returns the energy removed.
+  double cool_cells(LagrangianState& s, double dt);
+
+  const Closure& closure_;
   LagrangianOperator op_;
   LagrangianState start_, predicted_, corrected_;
   FrozenCoefficients coefficients_;
-  std::vector<double> widths_, widths_mid_, T_mid_;
+  std::vector<double> widths_, widths_mid_, T_mid_, density_, cooled_T_;
 };
 
 }  // namespace granvv::hydro

@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "hydro/transport.hpp"
-
 namespace granvv::hydro {
 
 void cell_widths(const LagrangianState& s, std::vector<double>& widths) {
@@ -12,8 +10,8 @@ void cell_widths(const LagrangianState& s, std::vector<double>& widths) {
   for (int i = 0; i < n; ++i) widths[i] = cell_width(s, i);
 }
 
-LagrangianOperator::LagrangianOperator(const Physics& physics, int cells)
-    : physics_(physics),
+LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
+    : closure_(closure),
       n_(cells),
       momentum_(cells),
       energy_(cells),
@@ -30,22 +28,27 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
                                 double dt, const std::vector<double>& reference_dv,
                                 FrozenCoefficients& out) const {
-  out.pressure.resize(n_);
+  out.density.resize(n_);
   out.viscous_coupling.resize(n_);
+  out.shear_coupling.resize(n_);
   out.heat_coupling.resize(n_);
   out.acoustic_coupling.resize(n_);
   out.reference_dv.assign(n_, 0.0);
   if (!reference_dv.empty()) out.reference_dv = reference_dv;
+  for (int i = 0; i < n_; ++i) out.density[i] = cell_mass[i] / widths[i];
+  closure_.cell_coefficients(out.density, T, out.cell);
+  const CellCoefficients& cell = out.cell;
   for (int i = 0; i < n_; ++i) {
-    out.pressure[i] = pressure(cell_mass[i] / widths[i], T[i]);
-    out.viscous_coupling[i] = viscosity(physics_, T[i]) / widths[i];
-    out.acoustic_coupling[i] = out.pressure[i] * dt / widths[i];
+    const double w = widths[i];
+    out.viscous_coupling[i] = cell.viscosity[i] / w;
+    out.shear_coupling[i] = cell.shear_viscosity[i] / w;
+    out.acoustic_coupling[i] = 0.5 * cell.adiabatic_modulus[i] * dt / w;
   }
-  // Heat flux at node j between cell centres j-1 and j: kappa at the mean of the two
-  // cells' T^{1/2}, over the centre-to-centre distance h_j.
+  // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
+  // over the centre-to-centre distance h_j.
   for (int j = 0; j < n_; ++j) {
     const int l = (j + n_ - 1) % n_;
-    const double kappa = 0.5 * (conductivity(physics_, T[l]) + conductivity(physics_, T[j]));
+    const double kappa = 0.5 * (cell.conductivity[l] + cell.conductivity[j]);
     out.heat_coupling[j] = kappa / (0.5 * (widths[l] + widths[j]));
   }
 }
@@ -54,6 +57,8 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
                                  double dt, LagrangianState& to) {
   const int n = n_;
   const auto& a = c.viscous_coupling;
+  const auto& a_xy = c.shear_coupling;
+  const auto& p = c.cell.pressure;
   const auto& b = c.heat_coupling;
   const auto& alpha = c.acoustic_coupling;
   const auto& dv_ref = c.reference_dv;
@@ -69,20 +74,20 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
     const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
     diag_[j] = 2.0 * mu / dt + a[j] + alpha[j] + a[l] + alpha[l];
     upper_[j] = -(a[j] + alpha[j]);
-    const double explicit_stress_j = -c.pressure[j] - alpha[j] * dv_ref[j];
-    const double explicit_stress_l = -c.pressure[l] - alpha[l] * dv_ref[l];
+    const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
+    const double explicit_stress_l = -p[l] - alpha[l] * dv_ref[l];
     rhs_[j] = 2.0 * mu / dt * from.node_v[j] + explicit_stress_j - explicit_stress_l;
   }
   if (!momentum_.factorize(diag_, upper_)) return false;
   momentum_.solve(rhs_, v_mid_);
   const bool transverse = from.has_transverse();
   if (transverse) {
-    // Transverse momentum: shear stress a_i (vy_{i+1} - vy_i) (DESIGN.md §6).
+    // Transverse momentum: shear stress a_xy_i (vy_{i+1} - vy_i) (docs/physics.md §6).
     for (int j = 0; j < n; ++j) {
       const int l = (j + n - 1) % n;
       const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
-      diag_[j] = 2.0 * mu / dt + a[j] + a[l];
-      upper_[j] = -a[j];
+      diag_[j] = 2.0 * mu / dt + a_xy[j] + a_xy[l];
+      upper_[j] = -a_xy[j];
       rhs_[j] = 2.0 * mu / dt * from.node_vy[j];
     }
     if (!shear_.factorize(diag_, upper_)) return false;
@@ -104,10 +109,10 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
     const int r = (i + 1) % n;
     const double dv = v_mid_[r] - v_mid_[i];
     dv_mid_[i] = dv;
-    work_[i] = (-c.pressure[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
+    work_[i] = (-p[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
     if (transverse) {
       const double dvy = vy_mid_[r] - vy_mid_[i];
-      work_[i] += a[i] * dvy * dvy;
+      work_[i] += a_xy[i] * dvy * dvy;
     }
   }
   const auto& T = from.cell_T;

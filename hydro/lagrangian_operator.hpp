@@ -5,30 +5,36 @@
 // the cooling sink (paper Eq. 3). Viscous stress and heat conduction enter implicitly
 // (Crank-Nicolson, periodic tridiagonal systems). The pressure is frozen except for its
 // adiabatic response to the cell's own compression over the step, which is implicit:
-//   p_eff = p - alpha (dv - dv_ref),  alpha = (p/dx) dt
-// (2D: T ~ n on an adiabat, p ~ dx^-2, so a half-step change dx -> dx + dt dv/2 changes p by
-// -(p/dx) dt dv). This removes the sound-crossing limit of the thin cells in a density peak,
-// where the flow is supersonic and the compression limit already sets the step.
+//   p_eff = p - alpha (dv - dv_ref),  alpha = (B/dx) dt/2
+// with B the closure's adiabatic modulus (dp/d(dx) = -B/dx at fixed mass and entropy), so a
+// half-step change dx -> dx + dt dv/2 changes p by -(B/dx) dt dv/2 (dilute 2D gas: B = 2p).
+// This removes the sound-crossing limit of the thin cells in a density peak, where the flow is
+// supersonic and the compression limit already sets the step. Every constitutive coefficient
+// comes from the closure (hydro/closure.hpp), one call per pass.
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/lagrangian_state.hpp"
 #include "hydro/periodic_tridiagonal.hpp"
-#include "hydro/physics.hpp"
 
 namespace granvv::hydro {
 
 // Coefficients frozen over one pass, evaluated at one time level (or a mean of two).
 struct FrozenCoefficients {
-  std::vector<double> pressure;           // p_i = n_i T_i per cell
-  std::vector<double> viscous_coupling;   // a_i = eta(T_i) / dx_i per cell
-  std::vector<double> heat_coupling;      // b_j = kappa_j / h_j at node j (between cells j-1, j)
-  std::vector<double> acoustic_coupling;  // alpha_i = p_i dt / dx_i (implicit adiabatic response)
-  std::vector<double> reference_dv;       // dv_ref_i about which the pressure is linearised
+  std::vector<double> density;           // n_i = m_i / dx_i per cell
+  CellCoefficients cell;                 // the closure's p_i, B_i, eta_i, eta_xy_i, kappa_i
+  std::vector<double> viscous_coupling;  // a_i = eta_i / dx_i per cell
+  std::vector<double> shear_coupling;    // a_xy_i = eta_xy_i / dx_i per cell
+  std::vector<double> heat_coupling;     // b_j = kappa_j / h_j at node j (between cells j-1, j)
+  std::vector<double>
+      acoustic_coupling;             // alpha_i = B_i dt / (2 dx_i) (implicit adiabatic response)
+  std::vector<double> reference_dv;  // dv_ref_i about which the pressure is linearised
 };
 
 class LagrangianOperator {
  public:
-  LagrangianOperator(const Physics& physics, int cells);
+  // The closure must outlive the operator.
+  LagrangianOperator(const Closure& closure, int cells);
 
   // Coefficients from cell widths and temperatures (both per cell) for a step dt, with the
   // pressure linearised about the velocity differences reference_dv (empty: zero).
@@ -49,7 +55,7 @@ class LagrangianOperator {
   double last_relative_temperature_change() const { return last_dT_; }
 
  private:
-  Physics physics_;
+  const Closure& closure_;
   int n_;
   PeriodicTridiagonalSolver momentum_, energy_;
   std::vector<double> diag_, upper_, rhs_, v_mid_, vy_mid_, dv_mid_, work_;

@@ -8,10 +8,10 @@
 
 namespace granvv::hydro {
 
-Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Physics& physics, int k) {
+Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& closure, int k) {
   using cd = std::complex<double>;
   const double kx = 2.0 * M_PI * k;
-  const double TH = haff_temperature(s.t, haff_time_scale(physics));
+  const double TH = haff_temperature(s.t, haff_time_scale(closure));
   const int n = s.cells();
   auto e = [kx](double x) { return std::exp(cd(0.0, -kx * x)); };
   cd nu = 0.0, u = 0.0, theta = 0.0;
@@ -27,15 +27,15 @@ Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Physics& ph
 }
 
 MeasuredRate measure_linear_rate(const std::vector<LagrangianState>& snapshots,
-                                 const Physics& physics, int k, int branch) {
-  const auto modes = hcs_modes(physics, k);
+                                 const Closure& closure, int k, int branch) {
+  const auto modes = hcs_modes(closure, k);
   Eigen::Matrix3cd V;
   for (int b = 0; b < 3; ++b) V.col(b) = modes[b].eigenvector;
   const auto lu = V.partialPivLu();
-  const double t0 = haff_time_scale(physics);
+  const double t0 = haff_time_scale(closure);
   std::vector<double> s, log_modulus, phase;
   for (const auto& snap : snapshots) {
-    const Eigen::Vector3cd c = lu.solve(hcs_mode_amplitudes(snap, physics, k));
+    const Eigen::Vector3cd c = lu.solve(hcs_mode_amplitudes(snap, closure, k));
     const std::complex<double> cb = c[branch];
     s.push_back(collision_clock(snap.t, t0));
     log_modulus.push_back(std::log(std::abs(cb)));

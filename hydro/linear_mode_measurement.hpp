@@ -5,15 +5,15 @@
 #include <complex>
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/lagrangian_state.hpp"
-#include "hydro/physics.hpp"
 
 namespace granvv::hydro {
 
 // Complex Fourier amplitudes (nu, w, theta) of mode k, X(x) = Re(X_k e^{i 2 pi k x}), with
 // n = 1 + nu, v = T_H^{1/2} w, T = T_H (1 + theta) and T_H Haff's law at the state's time.
 // Cell fields are integrated exactly over each cell; node velocities by the midpoint rule.
-Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Physics& physics, int k);
+Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& closure, int k);
 
 struct MeasuredRate {
   std::complex<double> measured;  // in the collision clock s (hydro/haff.hpp)
@@ -25,6 +25,6 @@ struct MeasuredRate {
 // Least-squares rate of the chosen eigen-branch coordinate over the snapshots
 // (log-modulus and unwrapped phase against s).
 MeasuredRate measure_linear_rate(const std::vector<LagrangianState>& snapshots,
-                                 const Physics& physics, int k, int branch);
+                                 const Closure& closure, int k, int branch);
 
 }  // namespace granvv::hydro

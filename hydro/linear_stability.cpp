@@ -8,6 +8,8 @@
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "hydro/dilute_closure.hpp"
+
 namespace granvv::hydro {
 
 namespace {
@@ -118,43 +120,68 @@ std::array<HcsMode, 3> modes_of(const Eigen::Matrix3cd& a) {
 
 }  // namespace
 
+double hcs_epsilon(const Closure& closure) {
+  return closure.hcs_linearisation().epsilon;
+}
+
 double hcs_epsilon(const Physics& physics) {
-  return 4.0 * physics.q / physics.K;
+  return hcs_epsilon(DiluteClosure(physics));
 }
 
 double mode_wavenumber(int k) {
   return 2.0 * kPi * static_cast<double>(k);
 }
 
-Eigen::Matrix3cd hcs_linear_operator_kx(const Physics& physics, double kx) {
-  require_valid(physics);
-  const double eps = hcs_epsilon(physics);
-  const double K = physics.K;
+Eigen::Matrix3cd hcs_linear_operator_kx(const Closure& closure, double kx) {
+  const HcsLinearisation h = closure.hcs_linearisation();
+  const double eps = h.epsilon;
   const std::complex<double> ik(0.0, kx);
   Eigen::Matrix3cd a;
   // clang-format off
-  a << 0.0,        -ik,                        0.0,
-       -ik,        eps - 0.25 * K * kx * kx,   -ik,
-       -2.0 * eps, -ik,                        -(K * kx * kx + eps);
+  a << 0.0,                   -ik,                              0.0,
+       -ik * h.pressure_density, eps - h.viscosity * kx * kx,  -ik * h.pressure_temperature,
+       -h.cooling_density,    -ik * h.compression_heating,      -(h.conductivity * kx * kx + h.cooling_temperature);
   // clang-format on
   return a;
+}
+
+Eigen::Matrix3cd hcs_linear_operator_kx(const Physics& physics, double kx) {
+  require_valid(physics);
+  return hcs_linear_operator_kx(DiluteClosure(physics), kx);
+}
+
+Eigen::Matrix3cd hcs_linear_operator(const Closure& closure, int k) {
+  return hcs_linear_operator_kx(closure, mode_wavenumber(k));
 }
 
 Eigen::Matrix3cd hcs_linear_operator(const Physics& physics, int k) {
   return hcs_linear_operator_kx(physics, mode_wavenumber(k));
 }
 
+std::array<HcsMode, 3> hcs_modes_kx(const Closure& closure, double kx) {
+  return modes_of(hcs_linear_operator_kx(closure, kx));
+}
+
 std::array<HcsMode, 3> hcs_modes_kx(const Physics& physics, double kx) {
   return modes_of(hcs_linear_operator_kx(physics, kx));
+}
+
+std::array<HcsMode, 3> hcs_modes(const Closure& closure, int k) {
+  return modes_of(hcs_linear_operator(closure, k));
 }
 
 std::array<HcsMode, 3> hcs_modes(const Physics& physics, int k) {
   return modes_of(hcs_linear_operator(physics, k));
 }
 
-double shear_rate(const Physics& physics, int k) {
+double shear_rate(const Closure& closure, int k) {
+  const HcsLinearisation h = closure.hcs_linearisation();
   const double kx = mode_wavenumber(k);
-  return hcs_epsilon(physics) - 0.25 * physics.K * kx * kx;
+  return h.epsilon - h.shear_viscosity * kx * kx;
+}
+
+double shear_rate(const Physics& physics, int k) {
+  return shear_rate(DiluteClosure(physics), k);
 }
 
 double clustering_cutoff_mode(const Physics& physics) {
@@ -181,11 +208,17 @@ int shear_unstable_modes(const Physics& physics) {
   return count_below_cutoff(physics, 4.0);
 }
 
-Eigen::Vector3cd hcs_linear_evolution(const Physics& physics, int k,
+Eigen::Vector3cd hcs_linear_evolution(const Closure& closure, int k,
                                       const Eigen::Vector3cd& initial, double s) {
-  const Eigen::Matrix3cd as = hcs_linear_operator(physics, k) * s;
+  const Eigen::Matrix3cd as = hcs_linear_operator(closure, k) * s;
   const Eigen::Matrix3cd propagator = as.exp();
   return propagator * initial;
+}
+
+Eigen::Vector3cd hcs_linear_evolution(const Physics& physics, int k,
+                                      const Eigen::Vector3cd& initial, double s) {
+  require_valid(physics);
+  return hcs_linear_evolution(DiluteClosure(physics), k, initial, s);
 }
 
 }  // namespace granvv::hydro

@@ -1,11 +1,13 @@
 #pragma once
 // Time-step control. Pressure is explicit, so the step resolves sound crossing of the
-// narrowest cell (c^2 = 2T in 2D); the Lagrangian mesh must not compress or stretch any
-// cell by more than a set fraction per step, which is what lets the run follow a density
-// peak towards the flow-by-inertia singularity (n ~ 1/(tau - t)) in a bounded number of
-// steps per decade of density.
+// narrowest cell (the closure's adiabatic sound speed); the Lagrangian mesh must not compress
+// or stretch any cell by more than a set fraction per step, which is what lets the run follow
+// a density peak towards the flow-by-inertia singularity (n ~ 1/(tau - t)) in a bounded number
+// of steps per decade of density.
 #include <string>
+#include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/lagrangian_state.hpp"
 
 namespace granvv::hydro {
@@ -23,6 +25,16 @@ struct TimeStepLimit {
       limited_by;  // "sound", "compression", "dt_max" (the driver adds "heating", "output time")
 };
 
-TimeStepLimit time_step_limit(const LagrangianState& s, const TimeStepControl& control);
+class TimeStepLimiter {
+ public:
+  // The closure must outlive the limiter.
+  TimeStepLimiter(const Closure& closure, const TimeStepControl& control);
+  TimeStepLimit limit(const LagrangianState& s);
+
+ private:
+  const Closure& closure_;
+  TimeStepControl control_;
+  std::vector<double> widths_, density_, sound_speed_;
+};
 
 }  // namespace granvv::hydro

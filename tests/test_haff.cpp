@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/haff.hpp"
 #include "support/runge_kutta.hpp"
 
@@ -17,13 +18,17 @@ using granvv::hydro::Physics;
 
 using granvv::testing::rk4;
 
+// c = 8q/K of the dilute closure's sink c n T^{3/2}.
+double cooling_coefficient(const Physics& p) {
+  return granvv::hydro::DiluteClosure(p).cooling_coefficient();
+}
+
 TEST(Haff, TimeScaleAndCoolingCoefficientOfThePaperScene) {
   const Physics paper{4e-4, 0.01};
-  EXPECT_DOUBLE_EQ(granvv::hydro::haff_time_scale(paper), 0.01);            // K/(4q)
-  EXPECT_DOUBLE_EQ(granvv::hydro::cooling_rate_coefficient(paper), 200.0);  // 8q/K
+  EXPECT_DOUBLE_EQ(granvv::hydro::haff_time_scale(paper), 0.01);  // K/(4q)
+  EXPECT_DOUBLE_EQ(cooling_coefficient(paper), 200.0);            // 8q/K
   // Haff's law solves dT/dt = -c T^{3/2} with T(0) = 1 only if c = 2/t0.
-  EXPECT_DOUBLE_EQ(
-      granvv::hydro::cooling_rate_coefficient(paper) * granvv::hydro::haff_time_scale(paper), 2.0);
+  EXPECT_DOUBLE_EQ(cooling_coefficient(paper) * granvv::hydro::haff_time_scale(paper), 2.0);
   EXPECT_TRUE(std::isinf(granvv::hydro::haff_time_scale(Physics{4e-4, 0.0})));
 }
 
@@ -31,7 +36,7 @@ TEST(Haff, TemperatureSolvesTheHomogeneousCoolingOde) {
   // RK4 with 2e5 steps over 10 t0: global error ~ (h/t0)^4 ~ 1e-16 relative; the tolerance
   // 1e-11 leaves room for rounding accumulated over the steps.
   for (const Physics p : {Physics{4e-4, 0.01}, Physics{0.02, 0.2}, Physics{1e-3, 1e-4}}) {
-    const double c = granvv::hydro::cooling_rate_coefficient(p);
+    const double c = cooling_coefficient(p);
     const double t0 = granvv::hydro::haff_time_scale(p);
     const auto rhs = [c](double, double T) { return -c * std::pow(T, 1.5); };
     double T = 1.0;
@@ -101,7 +106,7 @@ TEST(Haff, ExactCoolingStepSolvesTheLossOde) {
 
 TEST(Haff, ExactCoolingStepComposesAndReproducesHaff) {
   const Physics p{4e-4, 0.01};
-  const double c = granvv::hydro::cooling_rate_coefficient(p);
+  const double c = cooling_coefficient(p);
   const double t0 = granvv::hydro::haff_time_scale(p);
   // Flow property of an autonomous ODE: two steps equal one step of the summed length
   // (rounding only, 1e-14).

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/initial_conditions.hpp"
@@ -16,7 +17,8 @@ RunResult run_scene(const InitialParameters& ip, const Physics& p, int cells, do
                     bool transverse = false) {
   RunControl control;
   control.t_end = t_end;
-  return run_hydro(p, discretize(make_initial_fields(ip, p), cells, 0.5, transverse), control);
+  return run_hydro(DiluteClosure(p), discretize(make_initial_fields(ip, p), cells, 0.5, transverse),
+                   control);
 }
 
 TEST(HydroConservation, SingleModeConservesMassMomentumAndEnergyToRoundOff) {
@@ -42,7 +44,7 @@ TEST(HydroConservation, RandomModesWithTransverseFlowConserveEnergy) {
   auto state = discretize(make_initial_fields(ip, p), 300, 0.5, true);
   for (int j = 0; j < state.cells(); ++j)
     state.node_vy[j] = 0.01 * std::sin(2 * M_PI * 3 * state.node_x[j]);
-  const RunResult r = run_hydro(p, state, control);
+  const RunResult r = run_hydro(DiluteClosure(p), state, control);
   ASSERT_EQ(r.status, RunStatus::completed) << r.stop_reason;
   EXPECT_LT(r.energy_drift, 1e-12);
   EXPECT_LT(r.momentum_drift, 1e-13);

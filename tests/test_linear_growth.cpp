@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/initial_conditions.hpp"
@@ -18,6 +19,7 @@ namespace granvv::hydro {
 namespace {
 
 const Physics kPhysics{0.01, 0.01};  // modes 1-3 unstable: pi k K < sqrt(q) = 0.1
+const DiluteClosure kClosure(kPhysics);
 
 // Run until the mode has grown or decayed by about e^3 (at most s = 0.4), sampling so that
 // the phase advances by less than 0.3 rad between samples.
@@ -31,7 +33,7 @@ std::vector<LagrangianState> evolve(const InitialFields& fields, std::complex<do
   auto time_of = [t0](double s) { return t0 * std::expm1(s / t0); };
   control.t_end = time_of(s_end);
   for (int i = 1; i <= samples; ++i) control.output_times.push_back(time_of(s_end * i / samples));
-  const RunResult r = run_hydro(kPhysics, discretize(fields, cells, 0.5, transverse), control);
+  const RunResult r = run_hydro(kClosure, discretize(fields, cells, 0.5, transverse), control);
   EXPECT_EQ(r.status, RunStatus::completed) << r.stop_reason;
   std::vector<LagrangianState> states;
   for (const auto& snap : r.snapshots) states.push_back(snap.state);
@@ -50,7 +52,7 @@ TEST_P(LinearGrowth, RateMatchesDispersionRelation) {
   const auto modes = hcs_modes(kPhysics, k);
   const int cells = k <= 5 ? 1000 : 2000;
   const auto states = evolve(make_initial_fields(ip, kPhysics), modes[branch].rate, cells);
-  const MeasuredRate r = measure_linear_rate(states, kPhysics, k, branch);
+  const MeasuredRate r = measure_linear_rate(states, kClosure, k, branch);
   EXPECT_LT(r.relative_error, 1e-3) << "k = " << k << " branch " << branch << ": measured "
                                     << r.measured << ", theory " << r.theory;
   if (branch == 0) {

@@ -1,0 +1,88 @@
+#pragma once
+// The closure of the 1D granular hydrodynamics (docs/physics.md §9): the constitutive
+// relations that close paper Eqs. (1)-(2) (Efrati, Livne & Meerson, PRL 94, 088001 (2005))
+// for the fields n, v, T in the paper's scaling,
+//   n dv/dt  = d/dx [-p + eta dv/dx],                                  (1b)
+//   n dT/dt  = [-p + eta dv/dx] dv/dx + d/dx(kappa dT/dx) - n Lambda,  (2)
+// with the thermal energy T per particle of the 2D gas. A closure supplies p(n, T), its
+// adiabatic response, the sound speed, the viscosities, the conductivity and the cooling sink
+// Lambda per unit mass; the operator, the time-step control, the cooling step, Haff's law and
+// the linear theory of the homogeneous cooling state take all of these from it.
+//
+// Every per-cell quantity is evaluated for a whole mesh in one call (arrays in, arrays out), so
+// choosing a closure at run time costs one virtual call per array, none per cell.
+//
+// Adding a closure (docs/architecture.md): its .hpp/.cpp implementing Closure, and one line in
+// make_closure (hydro/closure_registry.cpp).
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hydro/physics.hpp"
+
+namespace granvv::hydro {
+
+// Constitutive coefficients per cell at the cells' densities n and temperatures T.
+struct CellCoefficients {
+  std::vector<double> pressure;  // p(n, T)
+  // Adiabatic modulus B = n (dp/dn) at fixed entropy (per particle: dT = p dn / n^2). For a
+  // cell of fixed mass, dp/d(dx) = -B/dx along its compression: this is the implicit
+  // pressure response of the operator (hydro/lagrangian_operator.hpp).
+  std::vector<double> adiabatic_modulus;
+  std::vector<double> viscosity;        // longitudinal eta(n, T): stress eta dv_x/dx
+  std::vector<double> shear_viscosity;  // eta_xy(n, T): stress eta_xy dv_y/dx
+  std::vector<double> conductivity;     // kappa(n, T): heat flux -kappa dT/dx
+};
+
+// Coefficients of the linearised Eqs. (1)-(2) about the homogeneous cooling state n = 1, v = 0,
+// T = T_H(t), in collision-clock units (hydro/linear_stability.hpp, docs/physics.md §2). They
+// assume the hard-disk temperature scaling of every closure here: p ~ T, eta, kappa ~ T^{1/2},
+// Lambda ~ T^{3/2} at fixed n, so that the linearised equations have constant coefficients in
+// the collision clock. Values at n = 1, T = 1:
+struct HcsLinearisation {
+  double haff_time = 0.0;             // t0 of Haff's law T_H = (1 + t/t0)^-2 (= 2/Lambda)
+  double epsilon = 0.0;               // eps = 1/t0 = Lambda/2: cooling rate of T_H^{1/2}
+  double pressure_density = 0.0;      // dp/dn at fixed T
+  double pressure_temperature = 0.0;  // dp/dT at fixed n
+  double compression_heating = 0.0;   // p: heating -p dv/dx
+  double viscosity = 0.0;             // longitudinal eta
+  double shear_viscosity = 0.0;       // eta_xy
+  double conductivity = 0.0;          // kappa
+  double cooling_density = 0.0;       // dLambda/dn at fixed T
+  double cooling_temperature = 0.0;   // dLambda/dT - Lambda at fixed n (relative to Haff)
+};
+
+class Closure {
+ public:
+  virtual ~Closure() = default;
+  virtual std::string name() const = 0;
+
+  // All per-cell coefficients for densities n and temperatures T (same size; outputs resized).
+  virtual void cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                                 CellCoefficients& out) const = 0;
+  // Adiabatic sound speed c(n, T), c^2 = B/n.
+  virtual void sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                           std::vector<double>& c) const = 0;
+  // Cooling sink per unit mass Lambda(n, T): dT/dt = -Lambda at fixed density.
+  virtual void cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
+                            std::vector<double>& rate) const = 0;
+  // Temperatures after cooling exactly for dt at fixed densities n (operator splitting).
+  virtual void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
+                    std::vector<double>& cooled) const = 0;
+
+  virtual HcsLinearisation hcs_linearisation() const = 0;
+};
+
+// What a closure is built from: the paper's K and q and closure-specific named parameters.
+struct ClosureParameters {
+  Physics physics;
+  std::map<std::string, double> extra;
+};
+
+// The registered closures by name ("dilute": paper Eqs. (1)-(2)). Throws std::invalid_argument
+// for an unknown name, listing the known ones.
+std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
+std::vector<std::string> closure_names();
+
+}  // namespace granvv::hydro

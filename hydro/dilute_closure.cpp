@@ -1,0 +1,65 @@
+#include "hydro/dilute_closure.hpp"
+
+#include "hydro/haff.hpp"
+
+namespace granvv::hydro {
+
+DiluteClosure::DiluteClosure(const Physics& physics)
+    : physics_(physics), cooling_coefficient_(8.0 * physics.q / physics.K) {}
+
+void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                                      CellCoefficients& out) const {
+  const size_t cells = n.size();
+  out.pressure.resize(cells);
+  out.adiabatic_modulus.resize(cells);
+  out.viscosity.resize(cells);
+  out.shear_viscosity.resize(cells);
+  out.conductivity.resize(cells);
+  for (size_t i = 0; i < cells; ++i) {
+    const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
+    out.pressure[i] = pressure(ni, Ti);
+    out.adiabatic_modulus[i] = adiabatic_modulus(ni, Ti);
+    const double eta = viscosity(Ti);
+    out.viscosity[i] = eta;
+    out.shear_viscosity[i] = eta;
+    out.conductivity[i] = conductivity(Ti);
+  }
+}
+
+void DiluteClosure::sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                                std::vector<double>& c) const {
+  c.resize(n.size());
+  for (size_t i = 0; i < n.size(); ++i) c[i] = sound_speed(T[i]);
+}
+
+void DiluteClosure::cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
+                                 std::vector<double>& rate) const {
+  rate.resize(n.size());
+  for (size_t i = 0; i < n.size(); ++i) rate[i] = cooling_rate(n[i], T[i]);
+}
+
+void DiluteClosure::cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
+                         std::vector<double>& cooled) const {
+  cooled.resize(n.size());
+  for (size_t i = 0; i < n.size(); ++i) {
+    cooled[i] = cool_exactly(T[i], n[i], cooling_coefficient_, dt);
+  }
+}
+
+HcsLinearisation DiluteClosure::hcs_linearisation() const {
+  HcsLinearisation h;
+  // Haff: dT/dt = -(8q/K) T^{3/2}, t0 = K/(4q) (paper, after Eq. 2); +inf for q = 0.
+  h.haff_time = physics_.K / (4.0 * physics_.q);
+  h.epsilon = 4.0 * physics_.q / physics_.K;
+  h.pressure_density = 1.0;      // dp/dn = T
+  h.pressure_temperature = 1.0;  // dp/dT = n
+  h.compression_heating = pressure(1.0, 1.0);
+  h.viscosity = viscosity(1.0);
+  h.shear_viscosity = viscosity(1.0);
+  h.conductivity = conductivity(1.0);
+  h.cooling_density = 2.0 * h.epsilon;  // Lambda/n = 8q/K
+  h.cooling_temperature = h.epsilon;    // (3/2 - 1) Lambda = 4q/K
+  return h;
+}
+
+}  // namespace granvv::hydro

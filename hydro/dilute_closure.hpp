@@ -1,0 +1,49 @@
+#pragma once
+// The dilute closure of the scaled 2D granular hydrodynamics, paper Eqs. (1)-(2) (Efrati,
+// Livne & Meerson, PRL 94, 088001 (2005); docs/physics.md §1, §9):
+//   p = n T,  eta = eta_xy = (K/4) T^{1/2},  kappa = K T^{1/2},  Lambda = (8q/K) n T^{3/2}.
+// The 2D ideal gas has adiabatic index 2 (T ~ n on an adiabat), so B = 2p and c^2 = 2T. The
+// xy shear viscosity of the dilute gas equals the longitudinal one (no bulk viscosity), so it
+// also drives the transverse velocity v_y(x) (docs/physics.md §6).
+#include <cmath>
+
+#include "hydro/closure.hpp"
+#include "hydro/physics.hpp"
+
+namespace granvv::hydro {
+
+class DiluteClosure final : public Closure {
+ public:
+  explicit DiluteClosure(const Physics& physics);
+
+  // The formulas, one per quantity, for one cell.
+  static double pressure(double n, double T) { return n * T; }
+  static double adiabatic_modulus(double n, double T) { return 2.0 * pressure(n, T); }
+  static double sound_speed(double T) { return std::sqrt(2.0 * T); }
+  double viscosity(double T) const { return 0.25 * physics_.K * std::sqrt(T); }
+  double conductivity(double T) const { return physics_.K * std::sqrt(T); }
+  // c = 8q/K of the sink Lambda = c n T^{3/2}.
+  double cooling_coefficient() const { return cooling_coefficient_; }
+  double cooling_rate(double n, double T) const {
+    return cooling_coefficient_ * n * T * std::sqrt(T);
+  }
+
+  const Physics& physics() const { return physics_; }
+
+  std::string name() const override { return "dilute"; }
+  void cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                         CellCoefficients& out) const override;
+  void sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                   std::vector<double>& c) const override;
+  void cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
+                    std::vector<double>& rate) const override;
+  void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
+            std::vector<double>& cooled) const override;
+  HcsLinearisation hcs_linearisation() const override;
+
+ private:
+  Physics physics_;
+  double cooling_coefficient_;
+};
+
+}  // namespace granvv::hydro
