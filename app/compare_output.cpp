@@ -97,6 +97,9 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
       {"left_at", number_or_null(out.window.left_at)},
       {"verdict", out.verdict},
       {"disagreement", out.disagreement},
+      {"verdict_rule",
+       {{"signal_to_noise_min", scene.verdict_rule.signal_to_noise_min},
+        {"offset_sigmas", scene.verdict_rule.offset_sigmas}}},
       {"first_field_offset_sigmas", number_or_null(out.offset_sigmas)},
       {"signal_to_noise", number_or_null(out.signal_to_noise)},
       {"haff",
@@ -153,6 +156,8 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
   write_attribute(g, "verdict", out.verdict);
   write_attribute(g, "disagreement", out.disagreement);
   write_attribute(g, "signal_to_noise", out.signal_to_noise);
+  write_attribute(g, "verdict_signal_to_noise_min", scene.verdict_rule.signal_to_noise_min);
+  write_attribute(g, "verdict_offset_sigmas", scene.verdict_rule.offset_sigmas);
   write_attribute(g, "box_length", sc.box_length);
   write_attribute(g, "particles", double(sc.particles));
   write_vector(g, "t", out.t);
