@@ -2,6 +2,7 @@
 
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
@@ -74,8 +75,8 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   }
   const auto& run = hydro_out.run;
   const double cell_steps = double(run.steps) * hydro.cells;
-  // The hydro's Haff time (paper: t0 = K / 4q, dilute, 1 - r^2 ~ 4q) in MD units.
-  const double t0_hydro = sc.md_time(hydro.physics.K / (4.0 * hydro.physics.q));
+  // The hydro's Haff time (hydro/haff.hpp) in MD units.
+  const double t0_hydro = sc.md_time(hydro::haff_time_scale(hydro.physics));
   const auto& haff = md_out.haff;
   return {
       {"status", "ok"},

@@ -21,6 +21,9 @@ namespace granvv::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Flow by inertia is put on the bins up to this fraction of its singularity time: at the
+// singularity itself its density is infinite in one bin (paper Eqs. 5-7).
+constexpr double kInertiaBeforeSingularity = 0.999;
 
 // One member's snapshot error model against the ensemble of a field: the error of the mean and
 // its source label (compare/ensemble_error_model.hpp).
@@ -277,7 +280,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     compare_fields_at(out.fields, hb, m, n0, scene.sigmas);
     record_peak_and_energies(out, hb, m, n0, members);
     // Flow by inertia on the same bins, before its singularity.
-    if (smooth && t < 0.999 * inertia_tau) {
+    if (smooth && t < kInertiaBeforeSingularity * inertia_tau) {
       const auto inertia = compare::bin_lagrangian_state(
           compare::flow_by_inertia_state(case_fields, t, 100 * bins), bins);
       out.inertia_n.push_back(inertia.n);
