@@ -2,6 +2,7 @@
 
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
@@ -74,8 +75,8 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   }
   const auto& run = hydro_out.run;
   const double cell_steps = double(run.steps) * hydro.cells;
-  // The hydro's Haff time (paper: t0 = K / 4q, dilute, 1 - r^2 ~ 4q) in MD units.
-  const double t0_hydro = sc.md_time(hydro.physics.K / (4.0 * hydro.physics.q));
+  // The hydro's Haff time (hydro/haff.hpp) in MD units.
+  const double t0_hydro = sc.md_time(hydro::haff_time_scale(hydro.physics));
   const auto& haff = md_out.haff;
   return {
       {"status", "ok"},
@@ -97,6 +98,9 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
       {"left_at", number_or_null(out.window.left_at)},
       {"verdict", out.verdict},
       {"disagreement", out.disagreement},
+      {"verdict_rule",
+       {{"signal_to_noise_min", scene.verdict_rule.signal_to_noise_min},
+        {"offset_sigmas", scene.verdict_rule.offset_sigmas}}},
       {"first_field_offset_sigmas", number_or_null(out.offset_sigmas)},
       {"signal_to_noise", number_or_null(out.signal_to_noise)},
       {"haff",
@@ -153,6 +157,8 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
   write_attribute(g, "verdict", out.verdict);
   write_attribute(g, "disagreement", out.disagreement);
   write_attribute(g, "signal_to_noise", out.signal_to_noise);
+  write_attribute(g, "verdict_signal_to_noise_min", scene.verdict_rule.signal_to_noise_min);
+  write_attribute(g, "verdict_offset_sigmas", scene.verdict_rule.offset_sigmas);
   write_attribute(g, "box_length", sc.box_length);
   write_attribute(g, "particles", double(sc.particles));
   write_vector(g, "t", out.t);

@@ -4,11 +4,15 @@
 #include <cmath>
 #include <complex>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
+#include <utility>
 
+#include "compare/binned_energies.hpp"
 #include "compare/density_modes.hpp"
+#include "compare/ensemble_error_model.hpp"
 #include "compare/ensemble_statistics.hpp"
+#include "compare/profile_measures.hpp"
+#include "compare/verdict.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
@@ -17,76 +21,17 @@ namespace granvv::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Flow by inertia is put on the bins up to this fraction of its singularity time: at the
+// singularity itself its density is infinite in one bin (paper Eqs. 5-7).
+constexpr double kInertiaBeforeSingularity = 0.999;
 
-// Mass-weighted mean of g over the bins: sum n g / sum n.
-double mass_mean(const std::vector<double>& n, const std::vector<double>& g) {
-  double m = 0.0, s = 0.0;
-  for (std::size_t b = 0; b < n.size(); ++b) {
-    if (std::isfinite(n[b]) && std::isfinite(g[b])) m += n[b], s += n[b] * g[b];
-  }
-  return s / m;
-}
-
-std::size_t argmax(const std::vector<double>& v) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < v.size(); ++i) {
-    if (v[i] > v[best]) best = i;
-  }
-  return best;
-}
-
-// Centred difference of v at bin b (periodic), in scaled units.
-double centred_slope(const std::vector<double>& v, std::size_t b) {
-  const std::size_t n = v.size();
-  return (v[(b + 1) % n] - v[(b + n - 1) % n]) * n / 2.0;
-}
-
-// The errors of the ensemble mean of one field, per bin. A single snapshot's error model
-// (md_bridge/coarse_grainer.hpp: sqrt(T/N) for v, T/sqrt(N-1) for T; Poisson n/sqrt(N) for n)
-// gives the shape over the bins; with k >= 2 members its level is calibrated by the ensemble
-// itself: the model variance is scaled by the mean over bins of (observed ensemble variance /
-// model variance), a ratio with bins (k - 1) degrees of freedom. This keeps the error of each
-// bin from resting on k - 1 degrees of freedom alone (with k = 3 a t-distribution puts only 90 %
-// of pure noise within 3 standard errors), and lets correlations the model ignores (density
-// fluctuations with S(0) != 1, hydrodynamic modes) enter through the ensemble.
+// One member's snapshot error model against the ensemble of a field: the error of the mean and
+// its source label (compare/ensemble_error_model.hpp).
 std::vector<double> mean_error(const std::vector<double>& model_one_member,
                                const compare::EnsembleStatistics& stats, std::string& source) {
-  const std::size_t bins = model_one_member.size();
-  double ratio_sum = 0.0;
-  int ratio_count = 0, members = 1;
-  for (std::size_t b = 0; b < bins; ++b) {
-    members = std::max(members, stats.members[b]);
-    const double k = stats.members[b], se = stats.standard_error[b], m = model_one_member[b];
-    if (k >= 2 && std::isfinite(se) && m > 0.0 && std::isfinite(m)) {
-      ratio_sum += k * se * se / (m * m);
-      ++ratio_count;
-    }
-  }
-  const double ratio = ratio_count > 0 ? ratio_sum / ratio_count : 1.0;
-  std::vector<double> err(bins);
-  for (std::size_t b = 0; b < bins; ++b) {
-    err[b] = model_one_member[b] * std::sqrt(ratio / std::max(1, stats.members[b]));
-  }
-  std::ostringstream s;
-  if (ratio_count > 0) {
-    s << "ensemble of " << members << " (model error x " << std::sqrt(ratio) << ")";
-  } else {
-    s << "single-snapshot model";
-  }
-  source = s.str();
-  return err;
-}
-
-// The box mean of hydro - MD of a field at output time k, in standard errors of that mean
-// (bins independent).
-double box_mean_offset(const ComparedField& f, std::size_t k) {
-  double sum = 0.0, var = 0.0;
-  for (std::size_t b = 0; b < f.hydro[k].size(); ++b) {
-    const double d = f.hydro[k][b] - f.md[k][b], e = f.md_error[k][b];
-    if (!std::isfinite(d) || !(e > 0)) continue;
-    sum += d, var += e * e;
-  }
-  return var > 0 ? sum / std::sqrt(var) : 0.0;
+  compare::EnsembleMeanError e = compare::ensemble_mean_error(model_one_member, stats);
+  source = compare::error_source_label(e);
+  return std::move(e.error);
 }
 
 // Per field: the hydro on the bins against the MD mean and its error (scaled units), and their
@@ -107,7 +52,7 @@ void compare_fields_at(std::vector<ComparedField>& fields, const compare::Binned
     model_vy.push_back(m->v_y_snapshot_error[b]);
     model_T.push_back(m->T_snapshot_error[b]);
   }
-  const double T_bar = mass_mean(md_n, md_T);
+  const double T_bar = compare::mass_weighted_mean(md_n, md_T);
   for (auto& f : fields) {
     std::vector<double> hv, mv, err;
     double scale = 1.0;  // n: the mean density n0
@@ -133,34 +78,24 @@ void compare_fields_at(std::vector<ComparedField>& fields, const compare::Binned
 void record_peak_and_energies(CompareOutcome& out, const compare::BinnedFields& hb,
                               const EnsembleSnapshot* m, double n0, int members) {
   const int bins = static_cast<int>(hb.n.size());
-  std::vector<double> md_n, md_T;
-  for (int b = 0; b < bins; ++b) md_n.push_back(m->n.mean[b] / n0), md_T.push_back(m->T.mean[b]);
-  // Peak density and the velocity gradient there, on the bins.
-  const std::size_t hp = argmax(hb.n), mp = argmax(md_n);
-  out.hydro_n_peak.push_back(hb.n[hp]);
-  out.md_n_peak.push_back(md_n[mp]);
-  out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
-  out.hydro_dvdx_peak.push_back(std::abs(centred_slope(hb.v_x, hp)));
-  out.md_dvdx_peak.push_back(std::abs(centred_slope(m->v_x.mean, mp)));
-  // Energies per particle from the bins. The MD flow energy has the sampling noise of the bin
-  // means removed: E|v_b|^2 = v^2 + 2 T_b / N_b per bin for a mean over N_b particles
-  // (divided by the members for the ensemble mean).
-  double eth_h = 0, ekin_h = 0, eth_m = 0, ekin_m = 0, mass_m = 0;
+  compare::BinnedFields md_mean;
   for (int b = 0; b < bins; ++b) {
-    const double dx = 1.0 / bins;
-    eth_h += hb.n[b] * hb.T[b] * dx;
-    ekin_h += 0.5 * hb.n[b] * (hb.v_x[b] * hb.v_x[b] + hb.v_y[b] * hb.v_y[b]) * dx;
-    const double vx = m->v_x.mean[b], vy = m->v_y.mean[b], count = m->count.mean[b];
-    if (!std::isfinite(vx) || !std::isfinite(md_T[b])) continue;
-    const double noise = count > 0 ? 2.0 * md_T[b] / (count * members) : 0.0;
-    mass_m += md_n[b] * dx;
-    eth_m += md_n[b] * md_T[b] * dx;
-    ekin_m += 0.5 * md_n[b] * (vx * vx + vy * vy - noise) * dx;
+    md_mean.n.push_back(m->n.mean[b] / n0), md_mean.T.push_back(m->T.mean[b]);
   }
-  out.hydro_energy_thermal.push_back(eth_h);
-  out.hydro_energy_kinetic.push_back(ekin_h);
-  out.md_energy_thermal.push_back(eth_m / mass_m);
-  out.md_energy_kinetic.push_back(ekin_m / mass_m);
+  md_mean.v_x = m->v_x.mean, md_mean.v_y = m->v_y.mean;
+  const std::size_t hp = compare::peak_bin(hb.n), mp = compare::peak_bin(md_mean.n);
+  out.hydro_n_peak.push_back(hb.n[hp]);
+  out.md_n_peak.push_back(md_mean.n[mp]);
+  out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
+  out.hydro_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(hb.v_x, hp)));
+  out.md_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(md_mean.v_x, mp)));
+  const compare::EnergiesPerParticle hydro = compare::box_energies(hb);
+  const compare::EnergiesPerParticle md =
+      compare::noise_corrected_energies(md_mean, m->count.mean, members);
+  out.hydro_energy_thermal.push_back(hydro.thermal);
+  out.hydro_energy_kinetic.push_back(hydro.flow);
+  out.md_energy_thermal.push_back(md.thermal);
+  out.md_energy_kinetic.push_back(md.flow);
 }
 
 // Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
@@ -214,48 +149,23 @@ void compare_density_modes(
   }
 }
 
-// The verdict line and the kind of disagreement (CompareOutcome::disagreement).
-void write_verdict(CompareOutcome& out, double sigmas) {
-  constexpr double kClearSignal = 3.0;
+// The kind of disagreement (compare/verdict.hpp) and the verdict line. The box-mean offset is
+// that of the first field to part, at the time it parted.
+void write_verdict(CompareOutcome& out, const CompareScene& scene) {
   if (!out.window.throughout && out.window.left_at) {
     const auto k = std::find(out.t.begin(), out.t.end(), *out.window.left_at) - out.t.begin();
     for (const auto& f : out.fields) {
-      if (f.name == out.window.first_out) out.offset_sigmas = box_mean_offset(f, k);
+      if (f.name == out.window.first_out) {
+        out.offset_sigmas = compare::box_mean_offset(f.hydro[k], f.md[k], f.md_error[k]);
+      }
     }
   }
-  if (out.window.throughout) {
-    out.disagreement = "none";
-  } else if (out.signal_to_noise >= kClearSignal || std::abs(out.offset_sigmas) > sigmas) {
-    out.disagreement = "model";
-  } else {
-    out.disagreement = "noise";
-  }
-  std::ostringstream v;
-  v.precision(4);
-  const double last = out.t.empty() ? kNaN : out.t.back();
-  if (out.window.throughout) {
-    v << "fields agree within " << sigmas << " sigma at every compared time up to t = " << last;
-  } else if (out.window.until) {
-    v << "fields agree within " << sigmas << " sigma until t = " << *out.window.until
-      << "; first to part: " << out.window.first_out << " (at t = " << *out.window.left_at << ")";
-  } else if (out.window.left_at) {
-    v << "fields differ beyond " << sigmas << " sigma from the first compared time; "
-      << "worst: " << out.window.first_out;
-  } else {
-    v << "no common output time";
-  }
-  v << " [signal/noise " << out.signal_to_noise;
-  if (out.disagreement == "noise") {
-    v << ": the imposed flow is not well above the particles' noise and the box means agree, so "
-         "the difference is noise-driven, not a failure of the hydro";
-  } else if (out.disagreement == "model" && out.signal_to_noise >= kClearSignal) {
-    v << ": the signal is clear of the noise, so the difference is the hydro's";
-  } else if (out.disagreement == "model") {
-    v << "; the box mean of " << out.window.first_out << " is off by " << out.offset_sigmas
-      << " standard errors, which zero-mean noise cannot make: the difference is the hydro's";
-  }
-  v << "]";
-  out.verdict = v.str();
+  const compare::Disagreement kind = compare::classify_disagreement(
+      out.window.throughout, out.signal_to_noise, out.offset_sigmas, scene.verdict_rule);
+  out.disagreement = compare::disagreement_name(kind);
+  out.verdict =
+      compare::verdict_sentence(out.window, out.t.empty() ? kNaN : out.t.back(), scene.sigmas,
+                                out.signal_to_noise, out.offset_sigmas, kind);
 }
 
 }  // namespace
@@ -265,6 +175,7 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
   CompareScene s;
   s.hydro_from_md = c.string("compare.hydro_initial") == "md";
   s.sigmas = c.real("compare.sigmas");
+  s.verdict_rule.offset_sigmas = s.sigmas;
   s.agreement_fraction = c.real("compare.agreement_fraction");
   s.density_modes = static_cast<int>(c.integer("compare.density_modes"));
   const long long bins = c.integer("md.bins");
@@ -369,7 +280,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     compare_fields_at(out.fields, hb, m, n0, scene.sigmas);
     record_peak_and_energies(out, hb, m, n0, members);
     // Flow by inertia on the same bins, before its singularity.
-    if (smooth && t < 0.999 * inertia_tau) {
+    if (smooth && t < kInertiaBeforeSingularity * inertia_tau) {
       const auto inertia = compare::bin_lagrangian_state(
           compare::flow_by_inertia_state(case_fields, t, 100 * bins), bins);
       out.inertia_n.push_back(inertia.n);
@@ -393,7 +304,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
 
   out.signal_to_noise = initial_signal_to_noise(md).ratio();
 
-  write_verdict(out, scene.sigmas);
+  write_verdict(out, scene);
   return out;
 }
 

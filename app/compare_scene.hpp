@@ -1,7 +1,7 @@
 #pragma once
 // A case's side-by-side part ([compare]): the hydro aligned with the particle run (same times,
 // optionally started from the particles' own coarse-grained t = 0 fields), and the comparison
-// of the two on the particles' bins, in the hydro's scaled units (DESIGN.md §4).
+// of the two on the particles' bins, in the hydro's scaled units (docs/physics.md §4).
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +11,7 @@
 #include "app/md_scene.hpp"
 #include "compare/binned_fields.hpp"
 #include "compare/field_metrics.hpp"
+#include "compare/verdict.hpp"
 
 namespace granvv::app {
 
@@ -18,6 +19,7 @@ struct CompareScene {
   bool hydro_from_md = true;
   double sigmas = 3.0;
   double agreement_fraction = 0.95;
+  compare::VerdictRule verdict_rule;  // its offset_sigmas is compare.sigmas
   int density_modes = 0;
 };
 
@@ -50,7 +52,8 @@ struct CompareOutcome {
   std::vector<ComparedField> fields;
   compare::AgreementWindow window;
   // Per output time, from the binned fields of both sides (per particle, scaled units):
-  // peak density, |dv/dx| at the peak (centred difference on the bins), thermal and flow energy.
+  // peak density, |dv/dx| at the peak (centred difference on the bins), thermal and flow energy
+  // (compare/binned_energies.hpp: the particles' flow energy without the bin means' noise).
   std::vector<double> hydro_n_peak, md_n_peak, md_n_peak_error;
   std::vector<double> hydro_dvdx_peak, md_dvdx_peak;
   std::vector<double> hydro_energy_thermal, md_energy_thermal;
@@ -65,13 +68,8 @@ struct CompareOutcome {
   std::vector<double> theory_rate;
   std::vector<double> collision_clock;  // s(t) of Haff's law at each output time
   double signal_to_noise = 0.0;
-  // Which kind a disagreement is (DESIGN.md §8): "none" (every field agreed throughout);
-  // "model" when the imposed flow is clear of the thermal noise on the bin scale
-  // (signal_to_noise >= 3) and the fields still part, or when the first field to part is off by
-  // a box-mean offset beyond `sigmas` standard errors of the box mean (a different cooling rate,
-  // say, which fluctuations with zero mean cannot make); otherwise "noise": the particles' own
-  // fluctuations, amplified by the unstable modes, compete with a weak or absent signal and
-  // shape the profiles, which a deterministic hydro cannot follow; not a failure of the hydro.
+  // Which kind a disagreement is, by CompareScene::verdict_rule (compare/verdict.hpp,
+  // docs/physics.md §8): "none", "model" or "noise".
   std::string disagreement;
   double offset_sigmas = 0.0;  // box-mean offset of the first field to part, in its std. errors
   std::string verdict;

@@ -2,8 +2,10 @@
 
 #include <cmath>
 
+#include "hydro/blowup_extrapolation.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
+#include "hydro/haff_deviation.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::app {
@@ -118,12 +120,8 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   // Paper Fig. 4: tau from 1/n_max(t), the density profile near the peak.
   out.singularity = hydro::fit_singularity_time(
       run.series.t, run.series.n_max, scene.tau_fit_min_density, scene.tau_fit_max_density);
-  const auto& t = run.series.t;
-  const auto& n = run.series.n_max;
-  const size_t last = t.size() - 1;
-  if (run.status == hydro::RunStatus::singularity && last >= 1 && n[last] > n[last - 1]) {
-    const double u0 = 1.0 / n[last - 1], u1 = 1.0 / n[last];
-    out.blowup_time = t[last] + u1 * (t[last] - t[last - 1]) / (u0 - u1);
+  if (run.status == hydro::RunStatus::singularity) {
+    out.blowup_time = hydro::extrapolate_blowup_time(run.series.t, run.series.n_max);
   }
   for (auto it = run.snapshots.rbegin(); it != run.snapshots.rend(); ++it) {
     if (it->label != "output") continue;
@@ -133,13 +131,8 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
     break;
   }
 
-  // Haff's law for the mass-weighted mean temperature.
-  const double t0 = hydro::haff_time_scale(physics);
-  for (size_t i = 0; i < run.series.t.size(); ++i) {
-    const double haff = hydro::haff_temperature(run.series.t[i], t0);
-    out.haff_max_relative_error =
-        std::max(out.haff_max_relative_error, std::abs(run.series.T_mean[i] / haff - 1.0));
-  }
+  out.haff_max_relative_error = hydro::haff_max_relative_error(run.series.t, run.series.T_mean,
+                                                               hydro::haff_time_scale(physics));
 
   if (scene.initial.type == "linear_mode") {
     std::vector<hydro::LagrangianState> states;

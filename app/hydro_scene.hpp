@@ -49,8 +49,8 @@ struct HydroOutcome {
   hydro::InitialFields fields;
   std::vector<SnapshotCheck> snapshots;
   std::optional<hydro::SingularityFit> singularity;
-  // Blow-up time extrapolated from the last two samples of 1/n_max(t): a tighter estimate of
-  // when n_max diverges than the window fit, since pressure in the peak bends 1/n_max(t).
+  // Blow-up time from the last two samples of 1/n_max(t) of a run stopped at the singularity
+  // (hydro/blowup_extrapolation.hpp).
   std::optional<double> blowup_time;
   std::optional<hydro::ProfileSlope> profile_slope;
   double profile_slope_time = 0.0;

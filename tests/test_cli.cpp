@@ -738,6 +738,12 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
     EXPECT_EQ(s["compare"]["fields"][field]["l2"].size(), 3u) << field;
   }
   EXPECT_TRUE(s["compare"]["verdict"].is_string());
+  // The verdict rule is written beside the verdict (compare/verdict.hpp): its offset threshold
+  // is the case's compare.sigmas, its signal-to-noise threshold 3.
+  const std::string kind = s["compare"].value("disagreement", "");
+  EXPECT_TRUE(kind == "none" || kind == "model" || kind == "noise") << kind;
+  EXPECT_EQ(s["compare"]["verdict_rule"]["signal_to_noise_min"], 3.0);
+  EXPECT_EQ(s["compare"]["verdict_rule"]["offset_sigmas"], s["compare"]["sigmas"]);
   EXPECT_GT(s["compare"]["cost"]["md"]["atom_steps"].get<double>(), 0.0);
   EXPECT_TRUE(contains(read_text(out / "case.toml"), "embedded:cases/quickstart.toml"));
   EXPECT_TRUE(fs::is_regular_file(out / "results.h5"));

@@ -1,0 +1,127 @@
+// The verdict rule of a comparison (compare/verdict.hpp) on constructed inputs on both sides of
+// each threshold, the boundary values included: "model" from signal-to-noise >= 3 (inclusive),
+// or from a box-mean offset beyond offset_sigmas (strict); "noise" otherwise; "none" when the
+// fields agreed throughout. Also the box-mean offset by hand and the verdict line, word for
+// word. All inputs are exact in floating point, so the answers are compared exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "compare/field_metrics.hpp"
+#include "compare/verdict.hpp"
+
+namespace {
+
+using granvv::compare::AgreementWindow;
+using granvv::compare::box_mean_offset;
+using granvv::compare::classify_disagreement;
+using granvv::compare::Disagreement;
+using granvv::compare::disagreement_name;
+using granvv::compare::kClearSignalToNoise;
+using granvv::compare::verdict_sentence;
+using granvv::compare::VerdictRule;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const VerdictRule kRule{kClearSignalToNoise, 3.0};  // the defaults of a case: compare.sigmas = 3
+
+TEST(Verdict, ClearSignalThresholdIsThreeAndTheDefault) {
+  EXPECT_EQ(kClearSignalToNoise, 3.0);
+  EXPECT_EQ(VerdictRule{}.signal_to_noise_min, 3.0);
+}
+
+TEST(Verdict, AgreementThroughoutIsNoneWhateverTheSignalOrOffset) {
+  EXPECT_EQ(classify_disagreement(true, 100.0, 100.0, kRule), Disagreement::none);
+  EXPECT_EQ(classify_disagreement(true, 0.0, 0.0, kRule), Disagreement::none);
+}
+
+TEST(Verdict, SignalToNoiseThresholdIsInclusive) {
+  const double below = std::nextafter(3.0, 0.0);
+  EXPECT_EQ(classify_disagreement(false, 3.0, 0.0, kRule), Disagreement::model_clear_signal);
+  EXPECT_EQ(classify_disagreement(false, 7.5, 0.0, kRule), Disagreement::model_clear_signal);
+  EXPECT_EQ(classify_disagreement(false, below, 0.0, kRule), Disagreement::noise);
+  EXPECT_EQ(classify_disagreement(false, 0.0, 0.0, kRule), Disagreement::noise);
+}
+
+TEST(Verdict, BoxOffsetThresholdIsStrictAndTwoSided) {
+  const double above = std::nextafter(3.0, kInf);
+  EXPECT_EQ(classify_disagreement(false, 1.0, 3.0, kRule), Disagreement::noise);
+  EXPECT_EQ(classify_disagreement(false, 1.0, -3.0, kRule), Disagreement::noise);
+  EXPECT_EQ(classify_disagreement(false, 1.0, above, kRule), Disagreement::model_box_offset);
+  EXPECT_EQ(classify_disagreement(false, 1.0, -above, kRule), Disagreement::model_box_offset);
+  EXPECT_EQ(classify_disagreement(false, 1.0, -4.0, kRule), Disagreement::model_box_offset);
+}
+
+TEST(Verdict, ClearSignalWinsOverTheOffset) {
+  EXPECT_EQ(classify_disagreement(false, 3.0, 10.0, kRule), Disagreement::model_clear_signal);
+}
+
+TEST(Verdict, OffsetThresholdIsTheCasesSigmas) {
+  // compare.sigmas = 2: an offset of 2.5 standard errors is the model's, of 2 not.
+  const VerdictRule two{kClearSignalToNoise, 2.0};
+  EXPECT_EQ(classify_disagreement(false, 1.0, 2.5, two), Disagreement::model_box_offset);
+  EXPECT_EQ(classify_disagreement(false, 1.0, 2.0, two), Disagreement::noise);
+  EXPECT_EQ(classify_disagreement(false, 1.0, 2.5, kRule), Disagreement::noise);
+}
+
+TEST(Verdict, NaNCountsAsBelowEveryThreshold) {
+  EXPECT_EQ(classify_disagreement(false, kNaN, kNaN, kRule), Disagreement::noise);
+}
+
+TEST(Verdict, NamesOfTheKinds) {
+  EXPECT_STREQ(disagreement_name(Disagreement::none), "none");
+  EXPECT_STREQ(disagreement_name(Disagreement::model_clear_signal), "model");
+  EXPECT_STREQ(disagreement_name(Disagreement::model_box_offset), "model");
+  EXPECT_STREQ(disagreement_name(Disagreement::noise), "noise");
+}
+
+TEST(Verdict, BoxMeanOffsetInStandardErrorsOfTheMean) {
+  // d = hydro - md = 1 in four bins with unit errors: sum d = 4, sqrt(sum e^2) = 2 -> 2.
+  EXPECT_EQ(box_mean_offset({1, 2, 3, 4}, {0, 1, 2, 3}, {1, 1, 1, 1}), 2.0);
+  // Differences of both signs cancel: d = {3, -1}, e = {3, 4}: 2 / 5.
+  EXPECT_EQ(box_mean_offset({3, 0}, {0, 1}, {3, 4}), 2.0 / 5.0);
+  // Left out: a NaN difference (empty bin), a zero and a NaN error. Kept: d = -3, e = 1.5 ->
+  // -3 / 1.5 = -2.
+  EXPECT_EQ(box_mean_offset({kNaN, 5, 5, 0}, {0, 0, 0, 3}, {1, 0, kNaN, 1.5}), -2.0);
+  // Nothing usable: 0.
+  EXPECT_EQ(box_mean_offset({1, 2}, {0, 0}, {0, kNaN}), 0.0);
+}
+
+TEST(Verdict, SentenceForEachWindowAndKind) {
+  AgreementWindow all;
+  all.throughout = true;
+  all.until = 2.5;
+  EXPECT_EQ(verdict_sentence(all, 2.5, 3.0, 0.5, 0.0, Disagreement::none),
+            "fields agree within 3 sigma at every compared time up to t = 2.5 [signal/noise 0.5]");
+
+  AgreementWindow parted;
+  parted.until = 1.0;
+  parted.left_at = 2.0;
+  parted.first_out = "T";
+  EXPECT_EQ(verdict_sentence(parted, 4.0, 3.0, 1.25, 0.0, Disagreement::noise),
+            "fields agree within 3 sigma until t = 1; first to part: T (at t = 2) [signal/noise "
+            "1.25: the imposed flow is not well above the particles' noise and the box means "
+            "agree, so the difference is noise-driven, not a failure of the hydro]");
+  EXPECT_EQ(verdict_sentence(parted, 4.0, 3.0, 1.25, -4.5, Disagreement::model_box_offset),
+            "fields agree within 3 sigma until t = 1; first to part: T (at t = 2) [signal/noise "
+            "1.25; the box mean of T is off by -4.5 standard errors, which zero-mean noise "
+            "cannot make: the difference is the hydro's]");
+
+  AgreementWindow never;
+  never.left_at = 0.5;
+  never.first_out = "v_x";
+  EXPECT_EQ(verdict_sentence(never, 4.0, 2.0, 12.0, 0.0, Disagreement::model_clear_signal),
+            "fields differ beyond 2 sigma from the first compared time; worst: v_x [signal/noise "
+            "12: the signal is clear of the noise, so the difference is the hydro's]");
+
+  // Four significant digits.
+  EXPECT_EQ(verdict_sentence(AgreementWindow{}, kNaN, 3.0, 1.0 / 3.0, 0.0, Disagreement::noise)
+                .substr(0, 43),
+            "no common output time [signal/noise 0.3333:");
+}
+
+}  // namespace
