@@ -20,8 +20,9 @@ namespace granvv::app {
 struct MdScene {
   md::MdRunSpec spec;  // spec.seed is the first seed; member m uses seed + m
   int ensemble = 1;
-  std::string engine;                  // md.engine
-  md::EngineSettings engine_settings;  // every number and boolean of [md], by key
+  std::string engine;  // md.engine
+  // Every number and boolean of [md] by key: the engine reads the ones it understands.
+  md::EngineSettings engine_settings;
 };
 
 // Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot

@@ -115,6 +115,7 @@ TEST(MdCli, ImpossibleParticleScenesAreRefusedBeforeLammps) {
       {"--set md.restitution=1.2", "md.restitution = 1.2"},
       {"--set md.kernel=gaussian", "md.kernel_width"},
       {"--set md.steps_per_contact=3", "md.steps_per_contact = 3"},
+      {"--set md.engine=hard_disks", "md.engine = \"hard_disks\""},
       {"--set md.area_fraction=0.45 --set initial.type=single_mode --set "
        "initial.velocity_amplitude=0 --set initial.type=random_modes --set "
        "initial.random_modes=2 --set initial.random_amplitude=0.5",
