@@ -138,7 +138,7 @@ void LammpsEngine::between_segments() {
   }
 }
 
-EngineSample LammpsEngine::sample() const {
+EngineValues LammpsEngine::series_values() const {
   return {{"kn", contact_.kn}, {"dt", contact_.dt}};
 }
 

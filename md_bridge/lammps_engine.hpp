@@ -60,7 +60,7 @@ class LammpsEngine final : public ParticleEngine {
   LocalParticles local_particles() override;
   ParticleFrame gather_frame() override;
   // kn and dt of the contact in use.
-  EngineSample sample() const override;
+  EngineValues series_values() const override;
   EngineCost cost() const override;
   // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of
   // the first run).

@@ -70,7 +70,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     s.energy_total.push_back(e.kinetic_total);
     s.momentum_x.push_back(e.momentum_x);
     s.momentum_y.push_back(e.momentum_y);
-    const EngineSample own = engine.sample();
+    const EngineValues own = engine.series_values();
     if (s.engine.empty()) {
       for (const auto& [name, value] : own) s.engine.push_back({name, {}});
     }

@@ -40,7 +40,7 @@ struct MdSeries {
   // Expected flow energy that the sampling noise of the bin means puts into energy_kinetic_x/y
   // (BoxEnergies::macro_noise_x/y): subtract it to see the macroscopic flow itself.
   std::vector<double> kinetic_noise_x, kinetic_noise_y;
-  // The engine's own numbers at every sample (ParticleEngine::sample), in its order.
+  // The engine's own numbers at every sample (ParticleEngine::series_values), in its order.
   std::vector<std::pair<std::string, std::vector<double>>> engine;
 };
 

@@ -67,8 +67,9 @@ struct EngineDetail {
 };
 using EngineDetails = std::vector<EngineDetail>;
 
-// An engine-specific number recorded at every sample of the time series ("kn").
-using EngineSample = std::vector<std::pair<std::string, double>>;
+// Engine-specific numbers by name ("kn"), recorded at every sample of the time series and
+// written beside it (results.h5 /md/timeseries/<name>).
+using EngineValues = std::vector<std::pair<std::string, double>>;
 
 // One engine serves every member of an ensemble: set_up starts a new run.
 class ParticleEngine {
@@ -101,8 +102,8 @@ class ParticleEngine {
   virtual LocalParticles local_particles() = 0;
   // All particles, for a particle frame (collective).
   virtual ParticleFrame gather_frame() = 0;
-  // Engine-specific numbers of the current state, one per time-series sample.
-  virtual EngineSample sample() const { return {}; }
+  // Engine-specific numbers of the current state, taken at every time-series sample.
+  virtual EngineValues series_values() const { return {}; }
 
   virtual EngineCost cost() const = 0;
   virtual EngineDetails details() const { return {}; }
