@@ -2,6 +2,7 @@
 
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "app/md_output.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::app {
@@ -122,11 +123,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
           {"cell_steps", cell_steps},
           {"cell_steps_per_second", number_or_null(cell_steps / run.wall_seconds)}}},
         {"md",
-         {{"wall_seconds", md_out.wall_seconds},
-          {"particles", sc.particles},
-          {"ensemble", md.ensemble},
-          {"atom_steps", md_out.atom_steps},
-          {"atom_steps_per_second", number_or_null(md_out.atom_steps / md_out.wall_seconds)}}},
+         [&] {
+           json cost = md_cost_summary(md_out);
+           cost["particles"] = sc.particles;
+           cost["ensemble"] = md.ensemble;
+           return cost;
+         }()},
         {"md_to_hydro_wall_ratio", number_or_null(md_out.wall_seconds / run.wall_seconds)}}},
       {"peak",
        {{"hydro_n", numbers(out.hydro_n_peak)},
