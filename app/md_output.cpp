@@ -11,6 +11,10 @@ namespace {
 
 using nlohmann::json;
 
+// Acceptance of a particle run's cooling: the fitted Haff time lies within 3 % of kinetic theory
+// with the Enskog chi(phi) (docs/physics.md §4).
+constexpr double kHaffT0Tolerance = 0.03;
+
 // One field of every snapshot as a (snapshots x bins) matrix: mean and standard error.
 void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome& out,
                           compare::EnsembleStatistics EnsembleSnapshot::*field) {
@@ -37,6 +41,8 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
   const auto& c0 = out.runs.front().initial_contact;
   const auto& c1 = out.runs.front().final_contact;
+  const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
+  const double t0_paper = sc.md_time(physics.K / (4.0 * physics.q));
   return {
       {"status", out.runs.back().status},
       {"wall_seconds", out.wall_seconds},
@@ -57,8 +63,10 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"atom_steps", out.atom_steps},
       {"atom_steps_per_second", number_or_null(out.atom_steps / out.wall_seconds)},
       {"stiffness_changes", changes},
-      {"contact_initial", {{"kn", c0.kn}, {"gamma_n", c0.gamma_n}, {"dt", c0.dt}}},
-      {"contact_final", {{"kn", c1.kn}, {"gamma_n", c1.gamma_n}, {"dt", c1.dt}}},
+      {"contact_initial",
+       {{"kn", c0.kn}, {"gamma_n", c0.gamma_n}, {"dt", c0.dt}, {"contact_time", c0.contact_time}}},
+      {"contact_final",
+       {{"kn", c1.kn}, {"gamma_n", c1.gamma_n}, {"dt", c1.dt}, {"contact_time", c1.contact_time}}},
       {"haff_t0_measured", number_or_null(out.haff.t0)},
       {"haff_t0_measured_error", number_or_null(out.haff.t0_error)},
       {"haff_T0_measured", number_or_null(out.haff.T0)},
@@ -67,7 +75,13 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
       {"haff_t0_deviation", number_or_null(out.haff.t0 / out.haff_t0_theory - 1.0)},
       {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
-      {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
+      {"haff_t0_deviation_sigmas",
+       number_or_null((out.haff.t0 - out.haff_t0_theory) / out.haff.t0_error)},
+      {"haff_t0_tolerance", kHaffT0Tolerance},
+      {"haff_t0_within_tolerance",
+       std::isfinite(deviation) ? json(std::abs(deviation) <= kHaffT0Tolerance) : json()},
+      {"haff_t0_paper", t0_paper},
+      {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},

@@ -161,17 +161,6 @@ def find_snapshot_summary(ctx, t):
     return best
 
 
-def hydro_physics(ctx):
-    """(K, q) the hydro ran with: /hydro/theory attributes (in a comparison the particle
-    scene's), else the case's physics.K and physics.q."""
-    theory = ctx.hydro_theory or {}
-    K, q = num(theory.get("attrs", {}).get("K")), num(theory.get("attrs", {}).get("q"))
-    if K is None or q is None:
-        K = num(ctx.config("physics.K"))
-        q = num(ctx.config("physics.q"))
-    return K, q
-
-
 def md_value(ctx, key):
     """A number of the particle engine: summary.json's md block first, else the /md attribute."""
     v = num(ctx.md_summary(key))

@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from markupsafe import Markup
 
-from .data import (Skip, arr, cmp_box, cmp_data, cmp_rows, cmp_vec, cmp_window, hydro_physics, md_members,
+from .data import (Skip, arr, cmp_box, cmp_data, cmp_rows, cmp_vec, cmp_window, md_members,
                    md_value, nanmean_rows, num)
 from .formatting import CMP_FIELD_HTML, fmt, tex_num, verdict
 from .registry import Drawn, figure
@@ -219,8 +219,7 @@ def fig_cmp_time(ctx):
     ts = ctx.hydro_ts
     th = arr(ts, "t", 2)
     drawn = 0
-    Kq = hydro_physics(ctx)
-    t0h = Kq[0] / (4 * Kq[1]) if Kq[0] and Kq[1] else None
+    t0h = num(ctx.hydro_theory["attrs"].get("t0")) if ctx.hydro_theory else None   # the hydro's K/4q
     if th is not None:
         eth, ek, eky = arr(ts, "energy_thermal"), arr(ts, "energy_kinetic"), arr(ts, "energy_kinetic_y")
         if eth is not None and eth.size == th.size:
@@ -302,7 +301,7 @@ def fig_cmp_time(ctx):
             measured.append(("… E<sub>kin</sub> per particle: hydro, MD (binned, noise removed)",
                              Markup(f"{fmt(vals['hydro_kinetic'][last])}, {fmt(vals['md_kinetic'][last])}"), None))
     measured.append(("hydro's Haff time t<sub>0</sub> = K/4q (scaled; MD units)",
-                     Markup(f"{fmt(t0h)}; {fmt(t0h * L if t0h and L else None)}"), None))
+                     Markup(f"{fmt(t0h)}; {fmt(num(ctx.compare_summary('haff', 't0_hydro')))}"), None))
     return Drawn(fig, measured,
                  note=Markup("Green: the agreement window (every field within the chosen σ at every compared time up to "
                              "the green line); red dotted: where the first field leaves. Top axes: MD time "

@@ -9,14 +9,12 @@ import matplotlib.ticker
 import numpy as np
 from markupsafe import Markup, escape
 
-from .data import (Skip, arr, cmp_box, compare_hydro_T, get, hydro_physics, md_config, md_members,
+from .data import (Skip, arr, compare_hydro_T, get, md_config, md_members,
                    md_series, md_timeseries, md_value, nanmean_rows, num)
 from .formatting import fmt, pct, tex_num, verdict
 from .registry import Drawn, figure
 from .style import (MD_E_UNIT, MD_MAX_MEMBERS, MD_N_UNIT, MD_T_UNIT, MD_V_UNIT, MD_X_UNIT, band,
                     legend_on_top, pick, plain_log_ticks, power_scale, time_colors)
-
-MD_HAFF_TOLERANCE = 0.03     # acceptance: fitted t0 within 3 % of kinetic theory with the Enskog chi(phi)
 
 
 @figure(file="md1_haff.png", section="md", anchor="md_haff",
@@ -28,7 +26,7 @@ MD_HAFF_TOLERANCE = 0.03     # acceptance: fitted t0 within 3 % of kinetic theor
                  "with χ = 1 and 1 − r<sup>2</sup> ≈ 4q it is the paper's t<sub>0</sub> = K/(4q). At "
                  'finite density the Enskog factor χ(φ) = (1 − 7φ/16)/(1 − φ)<sup>2</sup> (Henderson) '
                  'shortens t<sub>0</sub>{chi_shortening}{restitution}. Acceptance: the fitted '
-                 't<sub>0</sub> lies within 3 % of the χ(φ) theory (green band). All three Haff '
+                 't<sub>0</sub> lies within {tolerance} of the χ(φ) theory (green band). All three Haff '
                  'curves use the fitted T<sub>0</sub>, so panel (b) compares t<sub>0</sub> alone.'))
 def fig_md_haff(ctx):
     """MD Haff: ensemble T(t) against Haff's law with the fitted, Enskog and dilute t0."""
@@ -69,12 +67,14 @@ def fig_md_haff(ctx):
                 if Xk.min() <= xv <= Xk.max() and (xv > Xk.min() or j == 1):
                     a.axvline(xv, color="C1", lw=1.0, ls=(0, (4, 3)),
                               label="fit window limits" if a is ax and j == 1 else None)
-    # acceptance: t0 within ±3 % of the chi(phi) theory, shown as the band of Haff curves it allows
-    if t0c and t0c > 0:
-        lo_c = T0 * (1 + t / (t0c * (1 - MD_HAFF_TOLERANCE))) ** -2.0
-        hi_c = T0 * (1 + t / (t0c * (1 + MD_HAFF_TOLERANCE))) ** -2.0
+    # acceptance: t0 within the program's tolerance of the chi(phi) theory, shown as the band of Haff
+    # curves it allows
+    tol = md_value(ctx, "haff_t0_tolerance")
+    if t0c and t0c > 0 and tol is not None:
+        lo_c = T0 * (1 + t / (t0c * (1 - tol))) ** -2.0
+        hi_c = T0 * (1 + t / (t0c * (1 + tol))) ** -2.0
         ax.fill_between(Xk, lo_c[keep], hi_c[keep], color="C2", alpha=0.16, lw=0,
-                        label=rf"acceptance: $t_0$ within $\pm{100 * MD_HAFF_TOLERANCE:.0f}$ % of $t_0^{{\chi}}$")
+                        label=rf"acceptance: $t_0$ within $\pm{100 * tol:.0f}$ % of $t_0^{{\chi}}$")
     if Tmem is not None and Tmem.shape[0] > 1:
         for j, row in enumerate(Tmem[:MD_MAX_MEMBERS]):
             ax.plot(Xk, row[keep], color="C3", lw=0.6, alpha=0.35,
@@ -92,16 +92,14 @@ def fig_md_haff(ctx):
         ax.plot(Xk, fit[keep], color="C4", lw=1.1, ls="-.", label=lab)
     # the hydro of a side-by-side run (same K, q): its mass-weighted <T>, in MD time
     hyd = compare_hydro_T(ctx)
-    hyd_note, t0_hyd = None, None
+    hyd_note = None
+    t0_hyd = num(ctx.compare_summary("haff", "t0_hydro"))   # K/4q of the hydro, in MD time
     if hyd is not None:
         th, Th = hyd
         sel = th <= t[-1] * (1 + 1e-9)
         th, Th = th[sel], Th[sel]
         Xh = 1 + th / t0c if t0c and t0c > 0 else th
         ok = (Xh > 0) & (Th > 0)
-        Kq = hydro_physics(ctx)
-        L = cmp_box(ctx)
-        t0_hyd = Kq[0] / (4 * Kq[1]) * L if Kq[0] and Kq[1] and L else None
         if ok.sum() >= 2:
             ax.plot(Xh[ok], Th[ok], color="C5", lw=1.6, ls=(0, (6, 2)), zorder=5,
                     label=r"hydro $\langle T\rangle$ (same $K$, $q$)"
@@ -140,11 +138,11 @@ def fig_md_haff(ctx):
         dh = 100 * (Th[ok] / ref_h - 1)
         if np.nanmax(np.abs(dh)) <= 30:   # a hydro far off (wrong t0) would flatten the particles' curves
             ax2.plot(Xh[ok], dh, color="C5", lw=1.4, ls=(0, (6, 2)), label=r"hydro $\langle T\rangle/T_{\rm Haff}^{\chi} - 1$")
-    if t0c and t0c > 0:
-        dev_band = [100 * (((1 + t / t0c) / (1 + t / (t0c * (1 + s * MD_HAFF_TOLERANCE)))) ** 2 - 1)
+    if t0c and t0c > 0 and tol is not None:
+        dev_band = [100 * (((1 + t / t0c) / (1 + t / (t0c * (1 + s * tol)))) ** 2 - 1)
                     for s in (-1, 1)]
         ax2.fill_between(Xk, dev_band[0][keep], dev_band[1][keep], color="C2", alpha=0.16, lw=0, zorder=0,
-                         label=rf"$t_0 = t_0^{{\chi}}(1 \pm {MD_HAFF_TOLERANCE:g})$")
+                         label=rf"$t_0 = t_0^{{\chi}}(1 \pm {tol:g})$")
     ax2.axhline(0, color="0.5", lw=0.6)
     ax2.set_xlabel(xlabel)
     ax2.set_ylabel(r"$T/T_{\rm Haff} - 1$  [%]")
@@ -165,11 +163,8 @@ def fig_md_haff(ctx):
         top.set_xlabel(MD_T_UNIT, fontsize=9)
 
     dev_c = num(ctx.md_summary("haff_t0_deviation"))
-    if dev_c is None and t0m and t0c:
-        dev_c = t0m / t0c - 1
     dev_d = num(ctx.md_summary("haff_t0_deviation_dilute"))
-    if dev_d is None and t0m and t0d:
-        dev_d = t0m / t0d - 1
+    tol_text = pct(tol, 2)
     unit = Markup(" σ(m/T<sub>0</sub>)<sup>1/2</sup>")
     measured = [
         ("t<sub>0</sub> fitted, T = T<sub>0</sub>(1 + t/t<sub>0</sub>)<sup>−2</sup> to the ensemble mean"
@@ -178,23 +173,23 @@ def fig_md_haff(ctx):
         ("T<sub>0</sub> fitted", fmt(T0m), None),
         ("t<sub>0</sub> kinetic theory with Enskog χ(φ) = (1 − 7φ/16)/(1 − φ)<sup>2</sup>",
          Markup(f"{fmt(t0c)}{unit}") if t0c is not None else fmt(None), None),
-        ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>χ</sup> − 1 (acceptance: within ±3 %)", pct(dev_c),
-         verdict(abs(dev_c) <= MD_HAFF_TOLERANCE, "within 3 %", "outside 3 %") if dev_c is not None else None),
-        ("… in units of the fit error, (t<sub>0</sub> − t<sub>0</sub><sup>χ</sup>)/δt<sub>0</sub> (computed here)",
-         fmt((t0m - t0c) / t0e, 3) if t0m is not None and t0c is not None and t0e else fmt(None), None),
+        (f"… deviation t<sub>0</sub>/t<sub>0</sub><sup>χ</sup> − 1 (acceptance: within ±{tol_text})", pct(dev_c),
+         verdict(ctx.md_summary("haff_t0_within_tolerance"), f"within {tol_text}", f"outside {tol_text}")),
+        ("… in units of the fit error, (t<sub>0</sub> − t<sub>0</sub><sup>χ</sup>)/δt<sub>0</sub>",
+         fmt(md_value(ctx, "haff_t0_deviation_sigmas"), 3), None),
         ("t<sub>0</sub> dilute kinetic theory (χ = 1)", Markup(f"{fmt(t0d)}{unit}") if t0d is not None else fmt(None), None),
         ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>dilute</sup> − 1", pct(dev_d), None),
         ("paper's t<sub>0</sub> = K/(4q) in MD units (1 − r<sup>2</sup> replaced by 4q, χ = 1)",
          Markup(f"{fmt(t0p)}{unit}") if t0p is not None else fmt(None), None),
-        ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>paper</sup> − 1 (computed here)",
-         pct(t0m / t0p - 1) if t0m is not None and t0p else fmt(None), None),
+        ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>paper</sup> − 1",
+         pct(md_value(ctx, "haff_t0_deviation_paper")), None),
         ("ensemble members (seeds)", fmt(M), None),
     ]
     if hyd is not None:
-        measured.append(("hydro of the comparison: t<sub>0</sub> = K/(4q) in MD time (the K, q the hydro ran with; "
-                         "computed here)", Markup(f"{fmt(t0_hyd)}{unit}") if t0_hyd else fmt(None), None))
+        measured.append(("hydro of the comparison: t<sub>0</sub> = K/(4q) in MD time (the K, q the hydro ran with)",
+                         Markup(f"{fmt(t0_hyd)}{unit}") if t0_hyd else fmt(None), None))
         measured.append(("… deviation t<sub>0</sub><sup>hydro</sup>/t<sub>0</sub> − 1 from the fitted t<sub>0</sub>",
-                         pct(t0_hyd / t0m - 1) if t0_hyd and t0m else fmt(None), None))
+                         pct(num(ctx.compare_summary("haff", "deviation_hydro"))), None))
         if hyd_note:
             measured.append(("note", escape(hyd_note), None))
     phi, r = md_value(ctx, "area_fraction"), md_value(ctx, "restitution")
@@ -203,7 +198,8 @@ def fig_md_haff(ctx):
                              "(v<sub>x</sub> and v<sub>y</sub>) in each coarse-graining bin."
                              + ("" if M > 1 else " One run: no ensemble error band.")),
                  caption_values=dict(chi_shortening=f" by {fmt(100 * (1 - t0c / t0d), 2)} % at φ = {fmt(phi)}" if t0c and t0d and phi else "",
-                                 restitution=f", r = {fmt(r)}" if r is not None else ""))
+                                 restitution=f", r = {fmt(r)}" if r is not None else "",
+                              tolerance=tol_text))
 
 
 @figure(file="md2_energy.png", section="md", anchor="md_energy",
@@ -472,12 +468,6 @@ def fig_md_contact(ctx):
     ci, cf = ctx.md_summary("contact_initial") or {}, ctx.md_summary("contact_final") or {}
     nc = num(md_config(ctx, "steps_per_contact"))
 
-    def tc(c):
-        k, g = num(get(c, "kn")), num(get(c, "gamma_n"))
-        if k is None or g is None or not 2 * k - g * g / 4 > 0:
-            return None
-        return math.pi / math.sqrt(2 * k - g * g / 4)   # m_eff = m/2 = 1/2
-
     def trio(c):
         return Markup(f"{fmt(num(get(c, 'kn')))}, {fmt(num(get(c, 'gamma_n')))}, {fmt(num(get(c, 'dt')))}")
 
@@ -489,12 +479,12 @@ def fig_md_contact(ctx):
         ("final k<sub>n</sub>, γ<sub>n</sub>, Δt (member 1)", trio(cf), None),
         ("stiffness changes (all members)", fmt(changes), None),
     ]
-    tci = tc(ci)
-    if tci and num(get(ci, "dt")):
-        measured.append(("t<sub>c</sub> = π/(k<sub>n</sub>/m<sub>eff</sub> − γ<sub>n</sub><sup>2</sup>/4)<sup>1/2</sup>, "
-                         "steps per contact t<sub>c</sub>/Δt (computed here; md.steps_per_contact = "
+    tci, tcf = num(get(ci, "contact_time")), num(get(cf, "contact_time"))
+    if tci:
+        measured.append(("contact time t<sub>c</sub> = π/(k<sub>n</sub>/m<sub>eff</sub> − γ<sub>n</sub><sup>2</sup>/4)<sup>1/2</sup>: "
+                         f"initial, final (member 1; Δt = t<sub>c</sub>/n<sub>c</sub>, md.steps_per_contact = "
                          f"{fmt(int(nc)) if nc else '—'})",
-                         Markup(f"{fmt(tci)}, {fmt(tci / num(get(ci, 'dt')), 4)}"), None))
+                         Markup(f"{fmt(tci)}, {fmt(tcf)}"), None))
     measured += [
         ("steps (all members), atom-steps", Markup(f"{fmt(ctx.md_summary('steps'))}, "
                                                    f"{fmt(md_value(ctx, 'atom_steps'), 3)}"), None),

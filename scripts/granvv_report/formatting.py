@@ -41,6 +41,11 @@ def verdict(ok, yes="within paper bound", no="outside paper bound"):
     return ("pass", yes) if ok else ("fail", no)
 
 
+def within_tolerance(ok):
+    """Badge of a verdict the program wrote against a tolerance (True, False, or None: nothing to judge)."""
+    return verdict(ok, "within tolerance", "outside tolerance")
+
+
 def tex_num(v, digits=3):
     """Number for a matplotlib label."""
     if v is None:

@@ -92,21 +92,22 @@ def compare_section(ctx):
     t0d = num(h.get("t0_theory_dilute")) if h else None
     t0d = t0d if t0d is not None else md_value(ctx, "haff_t0_theory_dilute")
     t0h = num(h.get("t0_hydro")) if h else None
-
-    def dev(ref):
-        if t0m is None or ref is None:
-            return fmt(None), fmt(None)
-        d = t0m / ref - 1
-        sg = (t0m - ref) / t0e if t0e else None
-        return pct(d), fmt(sg, 3)
+    # t0_measured / t0 - 1 and (t0_measured - t0) / its fit error, against each reference: the
+    # comparison's haff block, else (no comparison block) the particle engine's own numbers
+    if h:
+        devs = [(h.get("deviation_enskog"), h.get("deviation_enskog_sigmas")),
+                (h.get("deviation_dilute"), h.get("deviation_dilute_sigmas")),
+                (h.get("measured_deviation_from_hydro"), h.get("deviation_hydro_sigmas"))]
+    else:
+        devs = [(ctx.md_summary("haff_t0_deviation"), ctx.md_summary("haff_t0_deviation_sigmas")),
+                (ctx.md_summary("haff_t0_deviation_dilute"), None), (None, None)]
 
     unit = Markup(" σ(m/T<sub>0</sub>)<sup>1/2</sup>")
     haff = [("measured (fit of the MD's T(t))", Markup(f"{fmt(t0m)} ± {fmt(t0e, 2)}{unit}") if t0m is not None else fmt(None),
              fmt(None), fmt(None))]
-    for lab, ref in (("kinetic theory, Enskog χ(φ)", t0c), ("kinetic theory, dilute (χ = 1)", t0d),
-                     ("the hydro's K/4q (in MD time)", t0h)):
-        d, sg = dev(ref)
-        haff.append((lab, Markup(f"{fmt(ref)}{unit}") if ref is not None else fmt(None), d, sg))
+    for (lab, ref), (d, sg) in zip((("kinetic theory, Enskog χ(φ)", t0c), ("kinetic theory, dilute (χ = 1)", t0d),
+                                    ("the hydro's K/4q (in MD time)", t0h)), devs):
+        haff.append((lab, Markup(f"{fmt(ref)}{unit}") if ref is not None else fmt(None), pct(num(d)), fmt(num(sg), 3)))
     cost = get(c, "cost") or {}
     ch, cm = cost.get("hydro") or {}, cost.get("md") or {}
     cost_rows = [
@@ -119,10 +120,10 @@ def compare_section(ctx):
         ("MD / hydro wall-time ratio", fmt(num(cost.get("md_to_hydro_wall_ratio")), 3)),
     ]
     notes = []
-    if t0h is not None and t0m is not None and t0e and abs(t0h / t0m - 1) > 0.1 and abs(t0h - t0m) > 3 * t0e:
+    if h.get("hydro_cools_differently"):
         notes.append(Markup(
             f"The hydro's Haff time K/4q = {fmt(t0h)} σ(m/T<sub>0</sub>)<sup>1/2</sup> (the K, q the hydro ran with, in MD time) "
-            f"differs from the particles' measured t<sub>0</sub> = {fmt(t0m)} by {pct(t0h / t0m - 1)}: the hydro does "
+            f"differs from the particles' measured t<sub>0</sub> = {fmt(t0m)} by {pct(num(h.get('deviation_hydro')))}: the hydro does "
             "not cool like this particle box (its K, q do not describe the box, e.g. when md.particles or the box "
             "is set directly). Differences in T then come from the cooling rate, whatever the signal-to-noise "
             "classification above says."))
@@ -231,15 +232,18 @@ def snapshot_table(ctx):
     if not isinstance(snaps, list) or not snaps:
         return None
     order = ["t", "n_max", "T_min", "energy", "energy_thermal", "energy_kinetic", "energy_kinetic_y",
-             "collapse_error"]
+             "collapse_error", "collapse_within_tolerance"]
     seen = []
     for rec in snaps:
         for k in (rec or {}):
             if k not in seen:
                 seen.append(k)
     cols = [k for k in order if k in seen] + [k for k in seen if k not in order]
-    return {"cols": cols, "rows": [[fmt(num(get(r, c)) if num(get(r, c)) is not None else get(r, c)) for c in cols]
-                                   for r in snaps]}
+
+    def cell(v):
+        return fmt(v if isinstance(v, bool) or num(v) is None else num(v))
+
+    return {"cols": cols, "rows": [[cell(get(r, c)) for c in cols] for r in snaps]}
 
 
 def sweep_verdicts(ctx):
@@ -249,12 +253,12 @@ def sweep_verdicts(ctx):
         err = ctx.sweep("cooling_error")
         return [Markup("No cooling analysis: no point measured a Haff time with an error"
                        + (f" ({escape(err)})" if err else "") + ".")]
-    sig = num(c.get("sigmas")) or 3.0
+    sig = num(c.get("sigmas"))
     out = []
     fit = c.get("power_of_one_minus_r2")
     if isinstance(fit, dict) and num(fit.get("power")) is not None:
         p, pe = num(fit.get("power")), num(fit.get("power_error"))
-        z = (p - 1) / pe if pe else None
+        z = num(fit.get("deviation_from_one_sigmas"))
         out.append(Markup(f"The measured cooling rate scales as (1 − r<sup>2</sup>)<sup>p</sup> with p = {fmt(p, 4)} ± "
                           f"{fmt(pe, 2)} over r ≥ {fmt(num(fit.get('r_min')))} ({fmt(fit.get('points'))} points"
                           + (f"; {fmt(abs(z), 2)}σ from kinetic theory's p = 1" if z is not None else "") + ")."))
@@ -267,12 +271,10 @@ def sweep_verdicts(ctx):
         out.append(Markup(f"The paper's small-q rate (8q/K, with χ(φ)) departs from the measured one by more than "
                           f"{fmt(sig)}σ nowhere in the sweep."))
     else:
-        everywhere = rs and dep >= max(rs) - 1e-12 and all(
-            abs(num(q.get("paper_deviation_sigmas")) or 0) > sig for q in c.get("points") or [])
+        everywhere = rs and dep >= max(rs) - 1e-12 and all(q.get("paper_beyond_sigmas") for q in c.get("points") or [])
         out.append(Markup(f"The paper's small-q rate (8q/K, with χ(φ)) departs from the measured one by more than "
                           f"{fmt(sig)}σ for r ≤ {fmt(dep)}" + (" — at every r of the sweep." if everywhere else ".")))
-    miss = [q for q in c.get("points") or [] if isinstance(q, dict)
-            and num(q.get("deviation_enskog_sigmas")) is not None and abs(num(q["deviation_enskog_sigmas"])) > sig]
+    miss = [q for q in c.get("points") or [] if isinstance(q, dict) and q.get("enskog_beyond_sigmas")]
     if miss:
         out.append(Markup(f"Kinetic theory with χ(φ) itself misses the measured t<sub>0</sub> by more than {fmt(sig)}σ at r = "
                           + ", ".join(str(fmt(num(q.get("restitution")))) for q in miss)
@@ -291,8 +293,8 @@ def sweep_tables(ctx):
         md, c = p["md"], p["cool"] or {}
         t0, t0e = num(md.get("haff_t0_measured")), num(md.get("haff_t0_measured_error"))
         th = num(md.get("haff_t0_theory"))
-        dev = num(c.get("deviation_enskog")) if c else (t0 / th - 1 if t0 is not None and th else None)
-        sg = num(c.get("deviation_enskog_sigmas")) if c else ((t0 - th) / t0e if t0 is not None and th and t0e else None)
+        dev = num(c.get("deviation_enskog")) if c else num(md.get("haff_t0_deviation"))
+        sg = num(c.get("deviation_enskog_sigmas")) if c else num(md.get("haff_t0_deviation_sigmas"))
         st = p["status"]
         rows.append({
             "cells": [fmt(p["value"]),
@@ -304,13 +306,13 @@ def sweep_tables(ctx):
                       pct(dev), fmt(sg, 3),
                       Markup(f"{fmt(num(md.get('wall_seconds')), 3)} s") if num(md.get("wall_seconds")) is not None else fmt(None)],
             "link": p["link"], "dir": p["dir"],
-            "bad": sg is not None and abs(sg) > (num(ctx.cooling("sigmas")) or 3.0)})
+            "bad": bool(c.get("enskog_beyond_sigmas"))})
     fit = ctx.cooling("power_of_one_minus_r2")
     fit_rows = None
     if isinstance(fit, dict):
         p, pe = num(fit.get("power")), num(fit.get("power_error"))
         fit_rows = [("power p of (1 − r<sup>2</sup>)", Markup(f"{fmt(p, 4)} ± {fmt(pe, 2)}")),
-                    ("(p − 1)/δp (computed here)", fmt((p - 1) / pe if p is not None and pe else None, 3)),
+                    ("(p − 1)/δp", fmt(num(fit.get("deviation_from_one_sigmas")), 3)),
                     ("prefactor C (ζ = C (1 − r<sup>2</sup>)<sup>p</sup>, in (T<sub>0</sub>/m)<sup>1/2</sup>/σ)", fmt(num(fit.get("prefactor")), 4)),
                     ("χ<sup>2</sup> per degree of freedom", fmt(num(fit.get("chi2_per_dof")), 3)),
                     ("points in the fit, r ≥", Markup(f"{fmt(fit.get('points'))}, {fmt(num(fit.get('r_min')))}"))]
