@@ -1,5 +1,7 @@
 #include "app/compare_output.hpp"
 
+#include <algorithm>
+
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
 
@@ -80,6 +82,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   for (const auto& f : out.fields) {
     json& entry = fields[f.name];
     for (const auto& [name, metric] : kMetrics) entry[name] = numbers(per_time(f.track, metric));
+    json agrees = json::array();
+    for (const auto& d : f.track.at)
+      agrees.push_back(compare::field_agrees(d, scene.agreement_fraction));
+    entry["agrees"] = agrees;
+    entry["agrees_throughout"] =
+        std::all_of(agrees.begin(), agrees.end(), [](const json& a) { return a.get<bool>(); });
     entry["error_source"] = f.error_source;
   }
   const auto& run = hydro_out.run;

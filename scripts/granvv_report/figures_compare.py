@@ -381,8 +381,7 @@ def fig_cmp_metrics(ctx):
                          Markup(f"{fmt(fw[i_min], 3) if i_min is not None else fmt(None)} "
                                 f"(t = {fmt(t[i_min]) if i_min is not None else fmt(None)}), "
                                 f"{fmt(num(np.nanmax(worst)) if worst is not None else None, 3)}"),
-                         verdict(bool(np.nanmin(fw) >= frac_req), "agrees throughout", "leaves")
-                         if fw is not None and frac_req is not None and np.isfinite(fw).any() else None))
+                         verdict(ctx.compare_summary("fields", key, "agrees_throughout"), "agrees throughout", "leaves")))
     return Drawn(fig, measured)
 
 

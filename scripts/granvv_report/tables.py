@@ -72,10 +72,10 @@ def compare_section(ctx):
             if g is None:
                 continue
             cols = {k: cmp_vec(g, k, t.size) for k in ("l1", "l2", "linf", "fraction_within", "worst_z")}
+            agrees = ctx.compare_summary("fields", key, "agrees") or []   # the program's verdict per time
             trs = []
             for i in range(t.size):
-                fw = num(cols["fraction_within"][i]) if cols["fraction_within"] is not None else None
-                trs.append({"bad": fw is not None and frac is not None and fw < frac,
+                trs.append({"bad": i < len(agrees) and agrees[i] is False,
                             "cells": [fmt(num(t[i])), fmt(num(t[i] * L) if L else None)]
                             + [fmt(num(cols[k][i]) if cols[k] is not None else None, 3)
                                for k in ("l1", "l2", "linf", "fraction_within", "worst_z")]})
