@@ -151,27 +151,27 @@ def snapshot_labels(fields, ns):
     return [str(x) for x in lab]
 
 
-def find_snapshot_summary(ctx, t):
+def find_snapshot_summary(run, t):
     """The summary.json snapshot record closest to time t (within 1e-6 relative)."""
     best = None
-    for rec in ctx.hydro_summary("snapshots") or []:
+    for rec in run.hydro_summary("snapshots") or []:
         tr = num(get(rec, "t"))
         if tr is not None and abs(tr - t) <= 1e-6 * max(1.0, abs(t)):
             best = rec
     return best
 
 
-def md_value(ctx, key):
+def md_value(run, key):
     """A number of the particle engine: summary.json's md block first, else the /md attribute."""
-    v = num(ctx.md_summary(key))
-    if v is None and ctx.md_group:
-        v = num(ctx.md_group["attrs"].get(key))
+    v = num(run.md_summary(key))
+    if v is None and run.md_group:
+        v = num(run.md_group["attrs"].get(key))
     return v
 
 
-def md_config(ctx, key):
+def md_config(run, key):
     """A resolved md.* configuration value as a plain string/number (TOML quotes removed)."""
-    v = ctx.config("md." + key)
+    v = run.config("md." + key)
     return v.strip().strip('"') if isinstance(v, str) else v
 
 
@@ -195,12 +195,12 @@ def md_series(G, name, size):
     return a
 
 
-def md_timeseries(ctx, at_least_two=False):
+def md_timeseries(run, at_least_two=False):
     """(G, t) of /md/timeseries, or Skip with the reason (naming the MD error if the run failed)."""
-    G = ctx.md_ts
+    G = run.md_ts
     t = arr(G, "t", 1)
     if t is None or t.ndim != 1:
-        err = ctx.md_summary("error")
+        err = run.md_summary("error")
         if err:
             raise Skip(f"the particle run failed before writing its time series: {err}")
         raise Skip("no /md/timeseries in results.h5 (no particle run in this scene)")
@@ -216,9 +216,9 @@ def nanmean_rows(a):
         return np.nanmean(a, axis=0)
 
 
-def cmp_data(ctx):
+def cmp_data(run):
     """(C, t, x) of /compare, or Skip."""
-    C = ctx.compare
+    C = run.compare
     if C is None:
         raise Skip("no /compare group in results.h5 (the scene does not compare hydro and particles)")
     t, x = arr(C, "t", 1), arr(C, "x", 2)
@@ -227,11 +227,11 @@ def cmp_data(ctx):
     return C, t, x
 
 
-def cmp_box(ctx):
+def cmp_box(run):
     """Lx in sigma (MD time = scaled t * Lx), or None."""
-    C = ctx.compare
+    C = run.compare
     v = num(C["attrs"].get("box_length")) if C else None
-    return v if v is not None else md_value(ctx, "box_length")
+    return v if v is not None else md_value(run, "box_length")
 
 
 def cmp_rows(g, name, shape):
@@ -252,13 +252,13 @@ def cmp_window(C):
     return num(a.get("agreement_window")), num(a.get("left_at")), first if isinstance(first, str) else ""
 
 
-def compare_hydro_T(ctx):
+def compare_hydro_T(run):
     """(t_MD, <T>) of the hydro of a comparison (its Haff curve in MD time), or None."""
-    if ctx.compare is None:
+    if run.compare is None:
         return None
-    ts = ctx.hydro_ts
+    ts = run.hydro_ts
     t, T = arr(ts, "t", 2), arr(ts, "T_mean", 2)
-    L = cmp_box(ctx)
+    L = cmp_box(run)
     if t is None or T is None or T.size != t.size or not L:
         return None
     return t * L, T
@@ -275,20 +275,20 @@ def load_sweep(path):
     return sw
 
 
-def sweep_points(ctx):
+def sweep_points(run):
     """One record per point: value, dir, status, md block, cooling row (or None), report link."""
     rows = {}
-    cool = ctx.cooling("points") or []
+    cool = run.cooling("points") or []
     for c in cool:
         i = c.get("point") if isinstance(c, dict) else None
         if isinstance(i, int):
             rows[i] = c
     out = []
-    for i, p in enumerate(ctx.sweep("points")):
+    for i, p in enumerate(run.sweep("points")):
         p = p if isinstance(p, dict) else {}
         d = p.get("dir")
         link = None
-        if isinstance(d, str) and d and (ctx.outdir / d / "report.html").is_file():
+        if isinstance(d, str) and d and (run.outdir / d / "report.html").is_file():
             link = urllib.parse.quote(f"{d}/report.html", safe="/=,.-_")
         out.append({"i": i, "value": num(p.get("value")), "dir": d, "status": p.get("status"),
                     "exit_code": p.get("exit_code"), "md": p.get("md") if isinstance(p.get("md"), dict) else {},
@@ -296,11 +296,11 @@ def sweep_points(ctx):
     return out
 
 
-def sweep_cooling(ctx):
+def sweep_cooling(run):
     """Arrays over the points with a cooling row, sorted by r; Skip if fewer than one."""
-    pts = [p for p in sweep_points(ctx) if p["cool"]]
+    pts = [p for p in sweep_points(run) if p["cool"]]
     if not pts:
-        err = ctx.sweep("cooling_error")
+        err = run.sweep("cooling_error")
         raise Skip("no point measured a Haff time (cooling analysis absent)" + (f": {err}" if err else ""))
     pts.sort(key=lambda p: num(p["cool"].get("restitution")) or 0.0)
 

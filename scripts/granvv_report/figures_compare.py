@@ -67,13 +67,13 @@ def centred_slope_at_peak(n, v):
                  'same n, v, T. The hydro is binned exactly like the particles, so the two are '
                  'compared bin by bin. {inertia}A bin agrees when |hydro − MD| is below the chosen '
                  'number of standard errors of the MD mean.'))
-def fig_cmp_profiles(ctx):
+def fig_cmp_profiles(run):
     """Side by side: n, v_x, (v_y), T of hydro and MD (± error) on the bins at up to 6 times."""
-    C, t, x = cmp_data(ctx)
+    C, t, x = cmp_data(run)
     rows = cmp_fields(C, t, x)
     if not rows:
         raise Skip("/compare/fields holds no hydro and md rows of [times x bins]")
-    L = cmp_box(ctx)
+    L = cmp_box(run)
     I = C.get("inertia")
     inertia = {"n": cmp_rows(I, "n", (t.size, x.size)), "v_x": cmp_rows(I, "v", (t.size, x.size))}
     idx = pick(range(t.size), CMP_MAX_TIMES)
@@ -171,12 +171,12 @@ def fig_cmp_profiles(ctx):
                  "measured on the particles' bins; the lines in (c) are the full time series of each "
                  "engine (the MD's flow energy with the sampling noise of the bin means removed, so "
                  'it can dip below zero in a noise-only gas).'))
-def fig_cmp_time(ctx):
+def fig_cmp_time(run):
     """Side by side against time: peak density, |dv/dx| at the peak, E_th and E_kin per particle."""
-    C, t, x = cmp_data(ctx)
+    C, t, x = cmp_data(run)
     P, E = C.get("peak"), C.get("energy")
     K = t.size
-    L = cmp_box(ctx)
+    L = cmp_box(run)
     hn, mn, mne = (cmp_vec(P, k, K) for k in ("hydro_n", "md_n", "md_n_error"))
     hg, mg, inn = (cmp_vec(P, k, K) for k in ("hydro_dvdx", "md_dvdx", "inertia_n"))
     I = C.get("inertia")
@@ -216,10 +216,10 @@ def fig_cmp_time(ctx):
         a.legend(loc="best", fontsize=7.8)
         md_time_axis(a, L)
     # (c) energies per particle: the full time series of both engines, and the binned values
-    ts = ctx.hydro_ts
+    ts = run.hydro_ts
     th = arr(ts, "t", 2)
     drawn = 0
-    t0h = num(ctx.hydro_theory["attrs"].get("t0")) if ctx.hydro_theory else None   # the hydro's K/4q
+    t0h = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None   # the hydro's K/4q
     if th is not None:
         eth, ek, eky = arr(ts, "energy_thermal"), arr(ts, "energy_kinetic"), arr(ts, "energy_kinetic_y")
         if eth is not None and eth.size == th.size:
@@ -232,9 +232,9 @@ def fig_cmp_time(ctx):
             tot = ek + (eky if eky is not None and eky.size == th.size else 0.0)
             ax_c.plot(th, positive(tot), color="C0", lw=1.8, label=r"hydro $E_{\rm kin}$ (flow)")
             drawn += 1
-    G = ctx.md_ts
+    G = run.md_ts
     tm = arr(G, "t", 2)
-    N = num(C["attrs"].get("particles")) or md_value(ctx, "particles")
+    N = num(C["attrs"].get("particles")) or md_value(run, "particles")
     if tm is not None and L and N:
         S = tm.size
         ets = md_members(G, "energy_thermal", S)
@@ -301,7 +301,7 @@ def fig_cmp_time(ctx):
             measured.append(("… E<sub>kin</sub> per particle: hydro, MD (binned, noise removed)",
                              Markup(f"{fmt(vals['hydro_kinetic'][last])}, {fmt(vals['md_kinetic'][last])}"), None))
     measured.append(("hydro's Haff time t<sub>0</sub> = K/4q (scaled; MD units)",
-                     Markup(f"{fmt(t0h)}; {fmt(num(ctx.compare_summary('haff', 't0_hydro')))}"), None))
+                     Markup(f"{fmt(t0h)}; {fmt(num(run.compare_summary('haff', 't0_hydro')))}"), None))
     return Drawn(fig, measured,
                  note=Markup("Green: the agreement window (every field within the chosen σ at every compared time up to "
                              "the green line); red dotted: where the first field leaves. Top axes: MD time "
@@ -319,9 +319,9 @@ def fig_cmp_time(ctx):
                  'fraction reaches the required one (dashed). (b) The worst bin in standard errors. '
                  "(c) The size of the difference relative to the field's natural scale: n<sub>0</sub> "
                  'for n, the thermal speed (mean T)<sup>1/2</sup> for v, the mean T for T.'))
-def fig_cmp_metrics(ctx):
+def fig_cmp_metrics(run):
     """Per field against time: fraction of bins within sigmas, worst z, normalised L2 and L-infinity."""
-    C, t, x = cmp_data(ctx)
+    C, t, x = cmp_data(run)
     K = t.size
     frac_req, sig = num(C["attrs"].get("agreement_fraction")), num(C["attrs"].get("sigmas"))
     tracks = []
@@ -335,7 +335,7 @@ def fig_cmp_metrics(ctx):
         tracks.append((key, colour, d))
     if not tracks:
         raise Skip("/compare/fields holds no metrics")
-    L = cmp_box(ctx)
+    L = cmp_box(run)
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.4), layout="constrained")
     ax_f, ax_z, ax_n = axes
     lab = {"n": "$n$", "v_x": "$v_x$", "v_y": "$v_y$", "T": "$T$"}
@@ -381,7 +381,7 @@ def fig_cmp_metrics(ctx):
                          Markup(f"{fmt(fw[i_min], 3) if i_min is not None else fmt(None)} "
                                 f"(t = {fmt(t[i_min]) if i_min is not None else fmt(None)}), "
                                 f"{fmt(num(np.nanmax(worst)) if worst is not None else None, 3)}"),
-                         verdict(ctx.compare_summary("fields", key, "agrees_throughout"), "agrees throughout", "leaves")))
+                         verdict(run.compare_summary("fields", key, "agrees_throughout"), "agrees throughout", "leaves")))
     return Drawn(fig, measured)
 
 
@@ -393,9 +393,9 @@ def fig_cmp_metrics(ctx):
                  "√q. The theory (dashed) evolves each member's own t = 0 perturbation (n, v, T of "
                  "that k) and takes the rms over members; the MD's |n<sub>k</sub>| is the rms over "
                  'members too (the phases of noise-born modes differ between seeds).'))
-def fig_cmp_modes(ctx):
+def fig_cmp_modes(run):
     """Density Fourier modes |n_k| / |n_k(0)| against the collision clock: MD, hydro, linear theory."""
-    C, t, x = cmp_data(ctx)
+    C, t, x = cmp_data(run)
     Mo = C.get("modes")
     if Mo is None:
         raise Skip("no /compare/modes (compare.density_modes = 0)")

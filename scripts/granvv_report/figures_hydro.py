@@ -21,9 +21,9 @@ from .style import (N_UNIT, T_FIELD, T_UNIT, V_UNIT, X_UNIT, marker_every, pick,
                  'gradients; with 2000 Lagrangian mesh points the major peak holds more than 50 mesh '
                  'points above n = 10<sup>2</sup> shortly before it becomes singular. The inset shows '
                  'the earlier density history around the major peak.'))
-def fig_profiles(ctx):
+def fig_profiles(run):
     """Paper Fig. 1: density (log) and velocity (and temperature) profiles at the output times."""
-    F = ctx.hydro_fields
+    F = run.hydro_fields
     if F is None:
         raise Skip("no /hydro/fields in results.h5")
     t, x, n = arr(F, "t"), arr(F, "x", 2), arr(F, "n", 2)
@@ -115,8 +115,8 @@ def fig_profiles(ctx):
         ax_z.set_title("(d) history around the major peak")
         zoom_text = "Panel (d) plays the role of the paper's inset, in a fixed window around the final peak."
     measured = [
-        ("linearly unstable clustering modes", fmt(ctx.hydro_summary("unstable_modes")), None),
-        ("cells", fmt(ctx.hydro_summary("cells") or n.shape[1]), None),
+        ("linearly unstable clustering modes", fmt(run.hydro_summary("unstable_modes")), None),
+        ("cells", fmt(run.hydro_summary("cells") or n.shape[1]), None),
         (f"peak density at t = {fmt(t[last])} (last plotted snapshot)", fmt(float(np.nanmax(n[last]))), None),
         (f"cells with n &gt; 10<sup>2</sup> at t = {fmt(t[last])} (counted in the plotted snapshot)",
          fmt(int(np.sum(n[last] > 100))), None),
@@ -133,9 +133,9 @@ def fig_profiles(ctx):
                  'by thermal energy early and by kinetic energy late. The thermal energy keeps '
                  "following Haff's law until the singularity. Panel (b) is not in the paper: it "
                  'checks that the scheme conserves E + E<sub>cooled</sub> and momentum to round-off.'))
-def fig_energy(ctx):
+def fig_energy(run):
     """Paper Fig. 2: energy split on log-log axes with Haff's law, and the energy balance."""
-    ts = ctx.hydro_ts
+    ts = run.hydro_ts
     t, E = arr(ts, "t", 3), arr(ts, "energy", 3)
     if t is None or E is None or E.size != t.size:
         raise Skip("no energy time series")
@@ -146,7 +146,7 @@ def fig_energy(ctx):
     pos = t > 0
     if pos.sum() < 2:
         raise Skip("energy time series has fewer than two positive times")
-    t0 = num(ctx.hydro_theory["attrs"].get("t0")) if ctx.hydro_theory else None
+    t0 = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None
     has_balance = ok(Ec)
     fig, axes = plt.subplots(1, 2 if has_balance else 1, figsize=(11 if has_balance else 6.2, 4.3),
                              layout="constrained", squeeze=False)
@@ -200,8 +200,8 @@ def fig_energy(ctx):
         ax2.set_title("(b) conservation: energy balance and momentum")
         ax2.legend(loc="best")
     measured = [
-        ("energy balance drift |E + E<sub>cooled</sub> − E(0)| / E(0)", fmt(ctx.hydro_summary("energy_drift")), None),
-        ("momentum drift", fmt(ctx.hydro_summary("momentum_drift")), None),
+        ("energy balance drift |E + E<sub>cooled</sub> − E(0)| / E(0)", fmt(run.hydro_summary("energy_drift")), None),
+        ("momentum drift", fmt(run.hydro_summary("momentum_drift")), None),
     ]
     if ok(Eth) and ok(Ek):
         measured.append((f"at the last time t = {fmt(t[-1])}: E<sub>kin</sub>/E, E<sub>th</sub>/E "
@@ -220,9 +220,9 @@ def fig_energy(ctx):
                  'curves coincide within 1.5 %. Panel (c) shows that difference directly, in per cent '
                  'of the amplitude, with the tolerance band (analysis.collapse_tolerance, by default '
                  "the paper's 1.5 %)."))
-def fig_collapse(ctx):
+def fig_collapse(run):
     """Paper Fig. 3: v vs x, v vs xi = x - t v with the initial profile, and the collapse error."""
-    L, F = ctx.hydro_lagrangian, ctx.hydro_fields
+    L, F = run.hydro_lagrangian, run.hydro_fields
     if L is None:
         raise Skip("no /hydro/lagrangian in results.h5")
     X, V, XI, V0 = (arr(L, k, 2) for k in ("node_x", "node_v_x", "xi", "inertia_v0"))
@@ -233,8 +233,8 @@ def fig_collapse(ctx):
     amp = float(np.nanmax(np.abs(V0)))
     if not amp > 0:
         raise Skip("initial velocity profile is zero: no flow by inertia to test")
-    tau_in = num(ctx.hydro_theory["attrs"].get("inertia_tau")) if ctx.hydro_theory else None
-    collapse = [num(get(r, "collapse_error")) for r in ctx.hydro_summary("snapshots") or []]
+    tau_in = num(run.hydro_theory["attrs"].get("inertia_tau")) if run.hydro_theory else None
+    collapse = [num(get(r, "collapse_error")) for r in run.hydro_summary("snapshots") or []]
     if tau_in is None and all(c is None for c in collapse):
         raise Skip("the program makes no flow-by-inertia prediction for this initial condition "
                    "(inertia_tau absent/NaN, no collapse_error in summary.json)")
@@ -262,7 +262,7 @@ def fig_collapse(ctx):
         ax_a.plot(xs, vs, color=c, label=tlabel(t[i], labels[i]))
         xis, vis, v0s = sorted_periodic(XI[i], V[i], V0[i])
         ax_b.plot(xis, vis, color=c, lw=1.1, label=tlabel(t[i], labels[i]), zorder=2)
-        rec = find_snapshot_summary(ctx, float(t[i]))
+        rec = find_snapshot_summary(run, float(t[i]))
         ce = num(get(rec, "collapse_error"))
         lab = tlabel(t[i]) + (f"  (summary: {100 * ce:.2f} %)" if ce is not None else "")
         ax_c.plot(xis, 100 * (vis - v0s) / amp, color=c, lw=1.1, label=lab)
@@ -276,7 +276,7 @@ def fig_collapse(ctx):
     ax_b.set_title(r"(b) velocity vs $\xi$: collapse onto $v_0$")
     ax_b.legend(loc="best", fontsize=7.5)
     plt.setp(ax_b.get_yticklabels(), visible=False)
-    tol = num(ctx.hydro_summary("collapse_tolerance"))   # analysis.collapse_tolerance
+    tol = num(run.hydro_summary("collapse_tolerance"))   # analysis.collapse_tolerance
     if tol is not None:
         ax_c.axhspan(-100 * tol, 100 * tol, color="C2", alpha=0.12, label=f"tolerance: ±{100 * tol:g} %")
         for s in (-1, 1):
@@ -290,14 +290,14 @@ def fig_collapse(ctx):
     ax_c.set_ylim(-ymax, ymax)
     ax_c.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
     measured = []
-    for r in ctx.hydro_summary("snapshots") or []:
+    for r in run.hydro_summary("snapshots") or []:
         tt, e = num(get(r, "t")), num(get(r, "collapse_error"))
         if tt is not None and e is not None:
             measured.append((f"collapse error at t = {fmt(tt)}", pct(e), within_tolerance(get(r, "collapse_within_tolerance"))))
-    worst = num(ctx.hydro_summary("collapse_error_max"))
+    worst = num(run.hydro_summary("collapse_error_max"))
     if worst is not None:
         measured.insert(0, ("largest collapse error over the snapshots", pct(worst),
-                            within_tolerance(ctx.hydro_summary("collapse_within_tolerance"))))
+                            within_tolerance(run.hydro_summary("collapse_within_tolerance"))))
     measured.append(("collapse tolerance (analysis.collapse_tolerance)", pct(tol), None))
     return Drawn(fig, measured,
                  note=Markup("Collapse error = max over nodes of |v − v<sub>0</sub>(ξ)| / |a|, as computed by the "
@@ -312,20 +312,20 @@ def fig_collapse(ctx):
                  'τ = 1/(2π|a|) ≃ 3.18, which agrees with the simulation within 2 %. In flow by '
                  'inertia 1/|∂v/∂x| = τ − t exactly and n = n<sub>0</sub>(0)(1 − t/τ)<sup>−1</sup> at '
                  'the peak; panel (c), not in the paper, shows this power law against the time left.'))
-def fig_singularity(ctx):
+def fig_singularity(run):
     """Paper Fig. 4a: n and |dv/dx| at the peak vs t, and their inverses with the fitted line to tau."""
-    ts = ctx.hydro_ts
+    ts = run.hydro_ts
     t, nmax, g = arr(ts, "t", 3), arr(ts, "n_max", 3), arr(ts, "dvdx_peak", 3)
     if t is None or nmax is None or nmax.size != t.size:
         raise Skip("no n_max time series")
     if np.nanmax(nmax) < 3 * max(nmax[0], 1e-300):
         raise Skip(f"peak density grows only to {np.nanmax(nmax):.3g}: no singularity to follow")
     g = np.abs(g) if g is not None and g.size == t.size else None
-    tau = num(ctx.hydro_summary("singularity_time"))
-    tau_in = num(ctx.hydro_summary("inertia_singularity_time"))
-    if tau_in is None and ctx.hydro_theory:
-        tau_in = num(ctx.hydro_theory["attrs"].get("inertia_tau"))
-    win = ctx.hydro_summary("tau_fit_window") or {}
+    tau = num(run.hydro_summary("singularity_time"))
+    tau_in = num(run.hydro_summary("inertia_singularity_time"))
+    if tau_in is None and run.hydro_theory:
+        tau_in = num(run.hydro_theory["attrs"].get("inertia_tau"))
+    win = run.hydro_summary("tau_fit_window") or {}
     tw0, tw1 = num(win.get("t_min")), num(win.get("t_max"))
     with np.errstate(divide="ignore", invalid="ignore"):
         inv_n = 1.0 / nmax
@@ -386,7 +386,7 @@ def fig_singularity(ctx):
     ax2.legend(loc="upper right")
     # Panel (c) counts time from the blow-up (extrapolated from the last samples of 1/n_max), the
     # time n_max really diverges; pressure in the peak bends 1/n_max, so the window fit comes earlier.
-    tau_c = num(ctx.hydro_summary("blowup_time")) or tau
+    tau_c = num(run.hydro_summary("blowup_time")) or tau
     if tau is not None:
         ax3 = axes[2]
         before = t < tau_c
@@ -410,20 +410,20 @@ def fig_singularity(ctx):
                      f"reaching $n_{{\\max}} = {tex_num(float(np.nanmax(nmax[after])))}$ at $t = {t[after][-1]:.4f}$",
                      transform=ax3.transAxes, ha="right", va="bottom", fontsize=7.5,
                      bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.8"))
-    dev = num(ctx.hydro_summary("singularity_time_deviation"))
+    dev = num(run.hydro_summary("singularity_time_deviation"))
     measured = [
         ("singularity time τ (fit of 1/n<sub>max</sub> in the window)", fmt(tau), None),
         ("fit window", Markup(f"n ∈ [{fmt(num(win.get('n_min')))}, {fmt(num(win.get('n_max')))}], "
                               f"t ∈ [{fmt(tw0)}, {fmt(tw1)}]") if win else fmt(None), None),
         ("blow-up time τ<sub>b</sub> (1/n<sub>max</sub> extrapolated from the last two samples)",
-         fmt(num(ctx.hydro_summary("blowup_time"))), None),
+         fmt(num(run.hydro_summary("blowup_time"))), None),
         ("relative deviation τ<sub>b</sub>/τ<sub>inertia</sub> − 1",
-         pct(num(ctx.hydro_summary("blowup_time_deviation"))), None),
+         pct(num(run.hydro_summary("blowup_time_deviation"))), None),
         ("flow-by-inertia prediction τ = 1/(2π|a|)", fmt(tau_in), None),
         ("relative deviation τ/τ<sub>inertia</sub> − 1", pct(dev),
-         verdict(ctx.hydro_summary("singularity_time_within_tolerance"))),
+         verdict(run.hydro_summary("singularity_time_within_tolerance"))),
     ]
-    pdt = ctx.hydro_summary("peak_density_times")
+    pdt = run.hydro_summary("peak_density_times")
     if isinstance(pdt, dict) and pdt:
         measured.append(("time the peak density first reaches " +
                          ", ".join(escape(k) for k in pdt), Markup(", ".join(str(fmt(num(v))) for v in pdt.values())),
@@ -439,15 +439,15 @@ def fig_singularity(ctx):
                  'n<sub>0</sub>(0)(1 − t/τ)<sup>−1</sup>; outside that core, but still close to x = '
                  '0, n(x, t) approaches the universal profile n ∝ |x|<sup>−2/3</sup> (straight line, '
                  'for reference).'))
-def fig_density_profile(ctx):
+def fig_density_profile(run):
     """Paper Fig. 4b: n vs |x - x_peak| on log-log axes near the singularity, x^{-2/3} reference."""
-    F = ctx.hydro_fields
+    F = run.hydro_fields
     if F is None:
         raise Skip("no /hydro/fields in results.h5")
     t, x, n = arr(F, "t"), arr(F, "x", 2), arr(F, "n", 2)
     if t is None or x is None or n is None or n.shape != x.shape or x.shape[0] != t.size:
         raise Skip("/hydro/fields lacks t, x, n of matching shapes")
-    ps = ctx.hydro_summary("profile_slope") or {}
+    ps = run.hydro_summary("profile_slope") or {}
     t_fit = num(ps.get("t"))
     cand = [i for i in range(t.size) if t[i] > 0 and np.nanmax(n[i]) > 10]
     if not cand:
@@ -529,14 +529,14 @@ def fig_density_profile(ctx):
                  'against 1 + t/t<sub>0</sub> on log-log axes. A uniform run must follow it to '
                  'round-off; in a clustering run the mean temperature departs from it once the '
                  'density is no longer uniform.'))
-def fig_haff(ctx):
+def fig_haff(run):
     """Haff's law: mass-weighted T vs t on log-log axes, and the relative deviation."""
-    ts = ctx.hydro_ts
+    ts = run.hydro_ts
     t, Tm, haff = arr(ts, "t", 2), arr(ts, "T_mean", 2), arr(ts, "haff_T", 2)
     if t is None or Tm is None or haff is None or not (t.size == Tm.size == haff.size):
         raise Skip("no T_mean / haff_T time series")
     Tmin = arr(ts, "T_min")
-    t0 = num(ctx.hydro_theory["attrs"].get("t0")) if ctx.hydro_theory else None
+    t0 = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None
     if t0 and t0 > 0:
         X = 1 + t / t0
         xlabel = r"$1 + t/t_0$" + rf"   ($t_0 = K/4q = {tex_num(t0)}$)"
@@ -566,7 +566,7 @@ def fig_haff(ctx):
     ax2.set_ylabel(r"$\langle T\rangle/T_{\rm Haff} - 1$" + suffix)
     ax2.set_title("(b) relative deviation from Haff's law")
     measured = [
-        ("max |⟨T⟩/T<sub>Haff</sub> − 1| (summary)", fmt(ctx.hydro_summary("haff_max_relative_error")), None),
+        ("max |⟨T⟩/T<sub>Haff</sub> − 1| (summary)", fmt(run.hydro_summary("haff_max_relative_error")), None),
         ("t<sub>0</sub> written by the code", fmt(t0), None),
     ]
     return Drawn(fig, measured)
@@ -578,9 +578,9 @@ def fig_haff(ctx):
                  'shear mode. Mode k (k<sub>x</sub> = 2πk) is clustering-unstable if πkK &lt; √q; for '
                  'K = 4·10<sup>−4</sup>, q = 10<sup>−2</sup> this gives 79 unstable modes. Growth is '
                  'algebraic in t, i.e. exponential in the collision clock used on the vertical axis.'))
-def fig_linear_theory(ctx):
+def fig_linear_theory(run):
     """Growth rates of the clustering and shear modes of the HCS vs mode number, with thresholds."""
-    th = ctx.hydro_theory
+    th = run.hydro_theory
     k = arr(th, "mode_k", 2)
     cr, sr = arr(th, "clustering_rate", 2), arr(th, "shear_rate", 2)
     if k is None or ((cr is None or cr.size != k.size) and (sr is None or sr.size != k.size)):
@@ -603,7 +603,7 @@ def fig_linear_theory(ctx):
         ax.set_xscale("log")
     if pos_max > 0:
         ax.set_ylim(-1.6 * pos_max, 1.25 * pos_max)
-    kc = num(ctx.hydro_summary("clustering_cutoff_mode"))   # sqrt(q) / (pi K)
+    kc = num(run.hydro_summary("clustering_cutoff_mode"))   # sqrt(q) / (pi K)
     if kc:
         ax.axvline(kc, color="C3", ls="--", lw=1.0,
                    label=rf"paper: $\pi k K = \sqrt{{q}}$, $k = {kc:.1f}$")
@@ -614,7 +614,7 @@ def fig_linear_theory(ctx):
             ax.plot([num(count)], [0], marker="v", color=c, ms=8, ls="none",
                     label=f"last unstable {lab} mode (code): $k = {int(num(count))}$")
     # a linear-mode run: measured growth of one seeded mode against the theory curve
-    lm = ctx.hydro_summary("linear_mode")
+    lm = run.hydro_summary("linear_mode")
     lm_note = None
     if isinstance(lm, dict):
         km, th_r, me_r = num(lm.get("k")), lm.get("rate_theory"), lm.get("rate_measured")
@@ -636,13 +636,13 @@ def fig_linear_theory(ctx):
     ax.set_ylabel("largest real growth rate  [collision-clock units]")
     ax.set_title("Linear stability of the homogeneous cooling state")
     ax.legend(loc="best")
-    got = ctx.hydro_summary("unstable_modes")
+    got = run.hydro_summary("unstable_modes")
     if got is None:
         got = nu
     measured = [
         ("unstable clustering modes: the k ≥ 1 with πkK &lt; √q", fmt(got), None),
         ("cutoff k<sub>c</sub> = √q/(πK)", fmt(kc), None),
-        ("unstable shear modes (code)", fmt(ctx.hydro_summary("shear_unstable_modes") or nsu), None),
+        ("unstable shear modes (code)", fmt(run.hydro_summary("shear_unstable_modes") or nsu), None),
     ]
     if isinstance(lm, dict):
         def cplx(v):
@@ -663,13 +663,13 @@ def fig_linear_theory(ctx):
         caption=('The paper uses a Lagrangian scheme (Richtmyer–Morton) that resolves steep gradients '
                  'and high peaks until close to the singularity; a second-order scheme shows '
                  'differences between successive refinements falling as N<sup>−2</sup> (dashed line).'))
-def fig_convergence(ctx):
+def fig_convergence(run):
     """Self-convergence: successive-refinement differences vs cells, slope-2 reference."""
-    C = ctx.hydro_convergence
+    C = run.hydro_convergence
     cells = arr(C, "cells", 2)
     if cells is None:
         raise Skip("no /hydro/convergence study in results.h5")
-    orders_s = ctx.hydro_summary("convergence") or {}
+    orders_s = run.hydro_summary("convergence") or {}
     fig, ax = plt.subplots(figsize=(6.8, 4.8), layout="constrained")
     drawn = []
     style = {"x": ("C0", "o", "position $x$"), "v": ("C3", "s", "velocity $v$"),

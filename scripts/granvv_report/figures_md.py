@@ -28,9 +28,9 @@ from .style import (MD_E_UNIT, MD_MAX_MEMBERS, MD_N_UNIT, MD_T_UNIT, MD_V_UNIT, 
                  'shortens t<sub>0</sub>{chi_shortening}{restitution}. Acceptance: the fitted '
                  't<sub>0</sub> lies within {tolerance} of the χ(φ) theory (green band). All three Haff '
                  'curves use the fitted T<sub>0</sub>, so panel (b) compares t<sub>0</sub> alone.'))
-def fig_md_haff(ctx):
+def fig_md_haff(run):
     """MD Haff: ensemble T(t) against Haff's law with the fitted, Enskog and dilute t0."""
-    G, t = md_timeseries(ctx, at_least_two=True)
+    G, t = md_timeseries(run, at_least_two=True)
     S = t.size
     Tmem = md_members(G, "T", S)
     Tm = md_series(G, "T_mean", S)
@@ -39,11 +39,11 @@ def fig_md_haff(ctx):
             raise Skip("/md/timeseries has neither T_mean nor T")
         Tm = nanmean_rows(Tmem)
     Ts = md_series(G, "T_stderr", S)
-    M = Tmem.shape[0] if Tmem is not None else int(md_value(ctx, "ensemble") or 1)
+    M = Tmem.shape[0] if Tmem is not None else int(md_value(run, "ensemble") or 1)
     fit, chi, dil = (md_series(G, k, S) for k in ("haff_fit", "haff_theory", "haff_theory_dilute"))
-    t0m, t0e = md_value(ctx, "haff_t0_measured"), md_value(ctx, "haff_t0_measured_error")
-    T0m = md_value(ctx, "haff_T0_measured")
-    t0c, t0d, t0p = (md_value(ctx, k) for k in ("haff_t0_theory", "haff_t0_theory_dilute", "haff_t0_paper"))
+    t0m, t0e = md_value(run, "haff_t0_measured"), md_value(run, "haff_t0_measured_error")
+    T0m = md_value(run, "haff_T0_measured")
+    t0c, t0d, t0p = (md_value(run, k) for k in ("haff_t0_theory", "haff_t0_theory_dilute", "haff_t0_paper"))
     T0 = T0m if T0m is not None else float(Tm[0])
     if chi is None and t0c:
         chi = T0 * (1 + t / t0c) ** -2.0
@@ -58,7 +58,7 @@ def fig_md_haff(ctx):
     Xk = X[keep]
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7.8, 7.0), sharex=True, layout="constrained",
                                   gridspec_kw={"height_ratios": [1.6, 1]})
-    win = ctx.md_summary("haff_fit_window")
+    win = run.md_summary("haff_fit_window")
     w0, w1 = (num(win[0]), num(win[1])) if isinstance(win, list) and len(win) == 2 else (None, None)
     if w0 is not None and w1 is not None and w1 > w0:
         xw = (1 + w0 / t0c, 1 + w1 / t0c) if t0c and t0c > 0 else (w0, w1)
@@ -69,7 +69,7 @@ def fig_md_haff(ctx):
                               label="fit window limits" if a is ax and j == 1 else None)
     # acceptance: t0 within the program's tolerance of the chi(phi) theory, shown as the band of Haff
     # curves it allows
-    tol = md_value(ctx, "haff_t0_tolerance")
+    tol = md_value(run, "haff_t0_tolerance")
     if t0c and t0c > 0 and tol is not None:
         lo_c = T0 * (1 + t / (t0c * (1 - tol))) ** -2.0
         hi_c = T0 * (1 + t / (t0c * (1 + tol))) ** -2.0
@@ -91,9 +91,9 @@ def fig_md_haff(ctx):
         lab = rf"fit: $t_0 = {tex_num(t0m, 4)}" + (rf" \pm {tex_num(t0e, 2)}$" if t0e is not None else "$")
         ax.plot(Xk, fit[keep], color="C4", lw=1.1, ls="-.", label=lab)
     # the hydro of a side-by-side run (same K, q): its mass-weighted <T>, in MD time
-    hyd = compare_hydro_T(ctx)
+    hyd = compare_hydro_T(run)
     hyd_note = None
-    t0_hyd = num(ctx.compare_summary("haff", "t0_hydro"))   # K/4q of the hydro, in MD time
+    t0_hyd = num(run.compare_summary("haff", "t0_hydro"))   # K/4q of the hydro, in MD time
     if hyd is not None:
         th, Th = hyd
         sel = th <= t[-1] * (1 + 1e-9)
@@ -162,8 +162,8 @@ def fig_md_haff(ctx):
         top.grid(False)
         top.set_xlabel(MD_T_UNIT, fontsize=9)
 
-    dev_c = num(ctx.md_summary("haff_t0_deviation"))
-    dev_d = num(ctx.md_summary("haff_t0_deviation_dilute"))
+    dev_c = num(run.md_summary("haff_t0_deviation"))
+    dev_d = num(run.md_summary("haff_t0_deviation_dilute"))
     tol_text = pct(tol, 2)
     unit = Markup(" σ(m/T<sub>0</sub>)<sup>1/2</sup>")
     measured = [
@@ -174,25 +174,25 @@ def fig_md_haff(ctx):
         ("t<sub>0</sub> kinetic theory with Enskog χ(φ) = (1 − 7φ/16)/(1 − φ)<sup>2</sup>",
          Markup(f"{fmt(t0c)}{unit}") if t0c is not None else fmt(None), None),
         (f"… deviation t<sub>0</sub>/t<sub>0</sub><sup>χ</sup> − 1 (acceptance: within ±{tol_text})", pct(dev_c),
-         verdict(ctx.md_summary("haff_t0_within_tolerance"), f"within {tol_text}", f"outside {tol_text}")),
+         verdict(run.md_summary("haff_t0_within_tolerance"), f"within {tol_text}", f"outside {tol_text}")),
         ("… in units of the fit error, (t<sub>0</sub> − t<sub>0</sub><sup>χ</sup>)/δt<sub>0</sub>",
-         fmt(md_value(ctx, "haff_t0_deviation_sigmas"), 3), None),
+         fmt(md_value(run, "haff_t0_deviation_sigmas"), 3), None),
         ("t<sub>0</sub> dilute kinetic theory (χ = 1)", Markup(f"{fmt(t0d)}{unit}") if t0d is not None else fmt(None), None),
         ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>dilute</sup> − 1", pct(dev_d), None),
         ("paper's t<sub>0</sub> = K/(4q) in MD units (1 − r<sup>2</sup> replaced by 4q, χ = 1)",
          Markup(f"{fmt(t0p)}{unit}") if t0p is not None else fmt(None), None),
         ("… deviation t<sub>0</sub>/t<sub>0</sub><sup>paper</sup> − 1",
-         pct(md_value(ctx, "haff_t0_deviation_paper")), None),
+         pct(md_value(run, "haff_t0_deviation_paper")), None),
         ("ensemble members (seeds)", fmt(M), None),
     ]
     if hyd is not None:
         measured.append(("hydro of the comparison: t<sub>0</sub> = K/(4q) in MD time (the K, q the hydro ran with)",
                          Markup(f"{fmt(t0_hyd)}{unit}") if t0_hyd else fmt(None), None))
         measured.append(("… deviation t<sub>0</sub><sup>hydro</sup>/t<sub>0</sub> − 1 from the fitted t<sub>0</sub>",
-                         pct(num(ctx.compare_summary("haff", "deviation_hydro"))), None))
+                         pct(num(run.compare_summary("haff", "deviation_hydro"))), None))
         if hyd_note:
             measured.append(("note", escape(hyd_note), None))
-    phi, r = md_value(ctx, "area_fraction"), md_value(ctx, "restitution")
+    phi, r = md_value(run, "area_fraction"), md_value(run, "restitution")
     return Drawn(fig, measured,
                  note=Markup("Times in σ(m/T<sub>0</sub>)<sup>1/2</sup> (top axis). T removes the local mean flow "
                              "(v<sub>x</sub> and v<sub>y</sub>) in each coarse-graining bin."
@@ -212,9 +212,9 @@ def fig_md_haff(ctx):
                  'energy is counted on its own. In the homogeneous cooling state both stay at the '
                  'sampling-noise level (about T/2 per bin and component, dotted) while E<sub>th</sub> '
                  "≈ E follows Haff's law. Pair forces conserve momentum: its drift is round-off."))
-def fig_md_energy(ctx):
+def fig_md_energy(run):
     """MD energies: thermal and macroscopic kinetic (x, and y = shear), total; momentum drift."""
-    G, t = md_timeseries(ctx, at_least_two=True)
+    G, t = md_timeseries(run, at_least_two=True)
     S = t.size
     keys = ("energy_total", "energy_thermal", "energy_kinetic_x", "energy_kinetic_y")
     E = {k: md_members(G, k, S) for k in keys}
@@ -225,7 +225,7 @@ def fig_md_energy(ctx):
     Tmem = md_members(G, "T", S)
     if Tm is None and Tmem is not None:
         Tm = nanmean_rows(Tmem)
-    N = md_value(ctx, "particles")
+    N = md_value(run, "particles")
     has_p = P is not None and E["energy_total"] is not None and N
     fig, axes = plt.subplots(1, 2 if has_p else 1, figsize=(11.2 if has_p else 6.6, 4.5),
                              layout="constrained", squeeze=False,
@@ -252,8 +252,8 @@ def fig_md_energy(ctx):
         mk = st.pop("marker", None)
         lab = st.pop("label") + (" (mean)" if a.shape[0] > 1 else "")
         ax.plot(t, mean, **{"lw": 1.2, **st}, marker=mk, ms=4, mfc="none", markevery=me, label=lab)
-    bins = num(md_config(ctx, "bins"))
-    kernel = md_config(ctx, "kernel")
+    bins = num(md_config(run, "bins"))
+    kernel = md_config(run, "kernel")
     floor = None
     if Tm is not None and bins and kernel == "bin" and (E["energy_kinetic_x"] is not None or E["energy_kinetic_y"] is not None):
         floor = 0.5 * bins * Tm
@@ -282,8 +282,8 @@ def fig_md_energy(ctx):
         if 1 < pm.shape[0] <= 6:
             ax2.legend(loc="best", fontsize=7.8)
     measured = [
-        ("linearly unstable clustering modes in this box (πkK &lt; √q)", fmt(ctx.md_summary("unstable_modes")), None),
-        ("linearly unstable shear modes in this box", fmt(ctx.md_summary("shear_unstable_modes")), None),
+        ("linearly unstable clustering modes in this box (πkK &lt; √q)", fmt(run.md_summary("unstable_modes")), None),
+        ("linearly unstable shear modes in this box", fmt(run.md_summary("shear_unstable_modes")), None),
     ]
     Eth = last.get("energy_thermal")
     if Eth:
@@ -312,14 +312,14 @@ def fig_md_energy(ctx):
                  'scale ℓ the velocity noise is about (n<sub>0</sub>L<sub>y</sub>ℓ)<sup>−1/2</sup> '
                  '(docs/physics.md §8), i.e. (T/N<sub>b</sub>)<sup>1/2</sup> per bin (dotted lines), '
                  'reduced by √M with M seeds.'))
-def fig_md_fields(ctx):
+def fig_md_fields(run):
     """MD coarse-grained profiles n, v_x, v_y, T at the snapshot times, with ensemble error bands."""
-    F = ctx.md_fields
+    F = run.md_fields
     t = arr(F, "t", 1)
     x = arr(F, "x", 1)
     if t is None or x is None or x.ndim != 1:
         if F is None:
-            md_timeseries(ctx)   # Skip naming the failure, or the absence of a particle run
+            md_timeseries(run)   # Skip naming the failure, or the absence of a particle run
             raise Skip("no /md/fields in results.h5")
         raise Skip("no snapshots in /md/fields (md.output_times is empty)")
     ns, nb = t.size, x.size
@@ -331,10 +331,10 @@ def fig_md_fields(ctx):
             Q[k] = (a, e if e is not None and e.shape == (ns, nb) and np.isfinite(e).any() else None)
     if "n" not in Q:
         raise Skip("/md/fields lacks n of shape [snapshots x bins]")
-    N, Lx, Ly = md_value(ctx, "particles"), md_value(ctx, "box_length"), md_value(ctx, "box_width")
+    N, Lx, Ly = md_value(run, "particles"), md_value(run, "box_length"), md_value(run, "box_width")
     n0 = N / (Lx * Ly) if N and Lx and Ly else None
-    M = int(md_value(ctx, "ensemble") or 1)
-    t0c, T0m = md_value(ctx, "haff_t0_theory"), md_value(ctx, "haff_T0_measured")
+    M = int(md_value(run, "ensemble") or 1)
+    t0c, T0m = md_value(run, "haff_t0_theory"), md_value(run, "haff_T0_measured")
     idx = pick(range(ns))
     cols = time_colors(t[idx])
     few = nb <= 60
@@ -370,7 +370,7 @@ def fig_md_fields(ctx):
             entries += 1
         if key in ("v_x", "v_y"):
             ax.axhline(0, color="0.5", lw=0.6)
-            if "T" in Q and Nb and md_config(ctx, "kernel") in (None, "bin"):   # N_b is a bin's count
+            if "T" in Q and Nb and md_config(run, "kernel") in (None, "bin"):   # N_b is a bin's count
                 Tl = float(np.nanmean(Q["T"][0][idx[-1]]))
                 s = math.sqrt(Tl / (Nb * M)) if Tl > 0 else None
                 if s:
@@ -394,7 +394,7 @@ def fig_md_fields(ctx):
         ("bins, width", Markup(f"{nb}, {fmt(Lx / nb if Lx else None)} σ"), None),
         ("mean particles per bin N<sub>b</sub> = N/B", fmt(Nb, 4), None),
         ("ensemble members", fmt(M), None),
-        ("unstable clustering modes in this box (πkK &lt; √q)", fmt(ctx.md_summary("unstable_modes")), None),
+        ("unstable clustering modes in this box (πkK &lt; √q)", fmt(run.md_summary("unstable_modes")), None),
     ]
     if n0:
         n_last = Q["n"][0][il]
@@ -425,16 +425,16 @@ def fig_md_fields(ctx):
                  't<sub>c</sub>/n<sub>c</sub> raised at the same restitution (dotted: the continuous '
                  'scaling k<sub>n</sub> ∝ T, Δt ∝ T<sup>−1/2</sup>). r is checked by a binary '
                  'collision inside LAMMPS.'))
-def fig_md_contact(ctx):
+def fig_md_contact(run):
     """Contact model: kn and dt vs t (adaptive stiffness), with the hard-disk scaling."""
-    G, t = md_timeseries(ctx)
+    G, t = md_timeseries(run)
     S = t.size
     kn, dt = md_members(G, "kn", S), md_members(G, "dt", S)
     if kn is None and dt is None:
         raise Skip("/md/timeseries has no kn or dt")
     Tm = md_series(G, "T_mean", S)
     Tmem = md_members(G, "T", S)
-    changes = ctx.md_summary("stiffness_changes")
+    changes = run.md_summary("stiffness_changes")
     rows = [(k, a) for k, a in (("kn", kn), ("dt", dt)) if a is not None]
     fig, axes = plt.subplots(len(rows), 1, figsize=(7.6, 2.9 * len(rows) + 0.4), sharex=True,
                              layout="constrained", squeeze=False)
@@ -465,13 +465,13 @@ def fig_md_contact(ctx):
             ax.set_title(r"(b) time step $\Delta t = t_c/n_c$")
         ax.legend(loc="best", fontsize=7.8)
     axes[-1, 0].set_xlabel(MD_T_UNIT)
-    ci, cf = ctx.md_summary("contact_initial") or {}, ctx.md_summary("contact_final") or {}
-    nc = num(md_config(ctx, "steps_per_contact"))
+    ci, cf = run.md_summary("contact_initial") or {}, run.md_summary("contact_final") or {}
+    nc = num(md_config(run, "steps_per_contact"))
 
     def trio(c):
         return Markup(f"{fmt(num(get(c, 'kn')))}, {fmt(num(get(c, 'gamma_n')))}, {fmt(num(get(c, 'dt')))}")
 
-    r, rm = md_value(ctx, "restitution"), md_value(ctx, "restitution_measured")
+    r, rm = md_value(run, "restitution"), md_value(run, "restitution_measured")
     measured = [
         ("restitution r: target / measured (binary collision in LAMMPS)", Markup(f"{fmt(r)} / {fmt(rm, 6)}"), None),
         ("… difference r<sub>measured</sub> − r", fmt(rm - r if rm is not None and r is not None else None, 2), None),
@@ -486,15 +486,15 @@ def fig_md_contact(ctx):
                          f"{fmt(int(nc)) if nc else '—'})",
                          Markup(f"{fmt(tci)}, {fmt(tcf)}"), None))
     measured += [
-        ("steps (all members), atom-steps", Markup(f"{fmt(ctx.md_summary('steps'))}, "
-                                                   f"{fmt(md_value(ctx, 'atom_steps'), 3)}"), None),
-        ("atom-steps / s", fmt(md_value(ctx, "atom_steps_per_second"), 3), None),
+        ("steps (all members), atom-steps", Markup(f"{fmt(run.md_summary('steps'))}, "
+                                                   f"{fmt(md_value(run, 'atom_steps'), 3)}"), None),
+        ("atom-steps / s", fmt(md_value(run, "atom_steps_per_second"), 3), None),
     ]
-    ov = num(md_config(ctx, "max_overlap"))
+    ov = num(md_config(run, "max_overlap"))
     return Drawn(fig, measured,
                  note=Markup("Each member sets its own k<sub>n</sub> from the fastest speed of its own sample"
                              + ("; with md.adaptive_stiffness the stiffness is lowered whenever the fastest relative "
                                 "speed has fallen below half its value at the last change."
-                                if str(md_config(ctx, "adaptive_stiffness")).lower() != "false" else
+                                if str(md_config(run, "adaptive_stiffness")).lower() != "false" else
                                 "; md.adaptive_stiffness is off, so k<sub>n</sub> and Δt stay fixed.")),
                  caption_values=dict(overlap=f"{fmt(ov)} σ" if ov else "md.max_overlap"))

@@ -24,12 +24,12 @@ def theory_constant(y, r, power_of):
     return m if np.all(np.abs(c / m - 1) < 1e-3) else None
 
 
-def sweep_r_axis(ctx, d):
+def sweep_r_axis(run, d):
     """(x values, label, smooth) — r when it varies, else the swept value labelled by its key."""
     r = d["restitution"]
     if np.isfinite(r).sum() >= 2 and np.nanmax(r) > np.nanmin(r):
         return r, "restitution coefficient $r$", True
-    return d["value"], ctx.sweep("key") or "swept value", False
+    return d["value"], run.sweep("key") or "swept value", False
 
 
 @figure(file="s1_t0.png", section="sweep", anchor="sweep_t0",
@@ -40,10 +40,10 @@ def sweep_r_axis(ctx, d):
                  "it at finite density{chi_at_phi}. The paper's hydro keeps the small-q form 8q/K, "
                  'i.e. 1 − r<sup>2</sup> ≈ 4q = 2(1 − r) and χ = 1: t<sub>0</sub> = K/4q ∝ 1/(1 − r), '
                  'too short by the factor (1 + r)/2 away from r = 1.'))
-def fig_sweep_t0(ctx):
+def fig_sweep_t0(run):
     """s1: measured Haff time against r with kinetic theory (chi, dilute) and the paper's small-q t0."""
-    d = sweep_cooling(ctx)
-    x, xlabel, smooth = sweep_r_axis(ctx, d)
+    d = sweep_cooling(run)
+    x, xlabel, smooth = sweep_r_axis(run, d)
     r = d["restitution"]
     fig, ax = plt.subplots(figsize=(7.6, 5.0), layout="constrained")
     ax.errorbar(x, d["t0"], yerr=d["t0_error"], fmt="o", color="C3", ms=6, capsize=3, lw=1.2, zorder=5,
@@ -93,16 +93,16 @@ def fig_sweep_t0(ctx):
         caption=('Kinetic theory predicts ζ ∝ (1 − r<sup>2</sup>)<sup>1</sup> at fixed density and '
                  "T<sub>0</sub>; the paper's hydro uses 8q/K ∝ 1 − r, which agrees with it only as r "
                  '→ 1.'))
-def fig_sweep_zeta(ctx):
+def fig_sweep_zeta(run):
     """s2: cooling rate against 1 - r^2 (log-log) with the fitted power law and kinetic theory."""
-    d = sweep_cooling(ctx)
+    d = sweep_cooling(run)
     r = d["restitution"]
-    _x, _lab, smooth = sweep_r_axis(ctx, d)
+    _x, _lab, smooth = sweep_r_axis(run, d)
     if not smooth:
         raise Skip("the sweep does not vary the restitution coefficient: no power of (1 − r²) to fit")
     u = 1 - r ** 2
-    fit = ctx.cooling("power_of_one_minus_r2")
-    sig = num(ctx.cooling("sigmas"))
+    fit = run.cooling("power_of_one_minus_r2")
+    sig = num(run.cooling("sigmas"))
     rmin = num(get(fit, "r_min")) if isinstance(fit, dict) else None
     used = r >= rmin - 1e-12 if rmin is not None else np.ones_like(r, dtype=bool)
     fig, ax = plt.subplots(figsize=(7.6, 5.0), layout="constrained")
@@ -166,11 +166,11 @@ def fig_sweep_zeta(ctx):
                  'kinetic theory by 2/(1 + r): 5 % at r = 0.9, 18 % at r = 0.7, 33 % at r = 0.5. '
                  "Where it leaves the grey band (the measurement's own error) the particles can tell "
                  'the difference.'))
-def fig_sweep_deviation(ctx):
+def fig_sweep_deviation(run):
     """s3: relative deviation of kinetic theory (chi) and of the paper's small-q rate from the measured rate."""
-    d = sweep_cooling(ctx)
-    x, xlabel, smooth = sweep_r_axis(ctx, d)
-    sig = num(ctx.cooling("sigmas"))
+    d = sweep_cooling(run)
+    x, xlabel, smooth = sweep_r_axis(run, d)
+    sig = num(run.cooling("sigmas"))
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = d["zeta_error"] / d["zeta"]
     fig, ax = plt.subplots(figsize=(7.6, 4.8), layout="constrained")
@@ -185,7 +185,7 @@ def fig_sweep_deviation(ctx):
             continue
         ax.errorbar(x[o], 100 * y[o], yerr=100 * (1 + y[o]) * rel[o], fmt=mk + "-", color=c, ms=5.5, capsize=3,
                     lw=1.1, label=lab)
-    dep = num(ctx.cooling("paper_departs_at_r"))
+    dep = num(run.cooling("paper_departs_at_r"))
     if dep is not None and smooth:
         ax.axvline(dep, color="C2", lw=1.0, ls="--")
         ax.text(dep, 0.97, rf"  departs for $r \leq {dep:g}$  ", transform=ax.get_xaxis_transform(), color="C2",
@@ -213,9 +213,9 @@ def fig_sweep_deviation(ctx):
                  '(t<sub>end</sub> in units of the kinetic-theory t<sub>0</sub> ∝ 1/(1 − '
                  'r<sup>2</sup>)), so the particle work grows as r → 1 while the rate per atom-step '
                  'stays that of LAMMPS.'))
-def fig_sweep_cost(ctx):
+def fig_sweep_cost(run):
     """s4: cost per point: wall seconds of MD and hydro, atom-steps and their rate."""
-    pts = sweep_points(ctx)
+    pts = sweep_points(run)
     x = np.array([p["value"] if p["value"] is not None else np.nan for p in pts])
     mdw = np.array([num(p["md"].get("wall_seconds")) or np.nan for p in pts])
     hw = np.array([p["hydro_wall"] if p["hydro_wall"] is not None else np.nan for p in pts])
@@ -223,7 +223,7 @@ def fig_sweep_cost(ctx):
     asr = np.array([num(p["md"].get("atom_steps_per_second")) or np.nan for p in pts])
     if not (np.isfinite(mdw).any() or np.isfinite(hw).any()):
         raise Skip("no point recorded a wall time")
-    key = ctx.sweep("key") or "swept value"
+    key = run.sweep("key") or "swept value"
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     if np.isfinite(mdw).any():
         ax.plot(x, positive(mdw), color="C3", marker="o", lw=1.2, label="MD (all members)")
@@ -254,7 +254,7 @@ def fig_sweep_cost(ctx):
     total = np.nansum(mdw) + np.nansum(hw)
     measured = [
         ("sweep wall time (sweep.json), sum over points of MD + hydro",
-         Markup(f"{fmt(num(ctx.sweep('wall_seconds')), 3)} s, {fmt(total, 3)} s"), None),
+         Markup(f"{fmt(num(run.sweep('wall_seconds')), 3)} s, {fmt(total, 3)} s"), None),
         ("atom-steps / s: lowest, highest", Markup(f"{fmt(num(np.nanmin(asr)) if np.isfinite(asr).any() else None, 3)}, "
                                                    f"{fmt(num(np.nanmax(asr)) if np.isfinite(asr).any() else None, 3)}"), None),
     ]

@@ -56,23 +56,23 @@ def generated_at():
 
 
 def build_sweep(outdir, strict=False):
-    ctx = SweepRun(outdir)
-    ctx.figdir = figure_folder(ctx.outdir)
-    figures, skipped, failed = draw_figures("sweep", ctx, ctx.figdir, strict)
+    run = SweepRun(outdir)
+    run.figdir = figure_folder(run.outdir)
+    figures, skipped, failed = draw_figures("sweep", run, run.figdir, strict)
     warn = []
-    status = ctx.sweep("status")
+    status = run.sweep("status")
     if status not in ("ok", None):
         warn.append(f"sweep status is '{status}': "
                     + ("it is still running or was stopped; the page shows the points finished so far."
                        if status == "running" else "at least one point failed (see its exit code)."))
-    rows, fit_rows, run = sweep_tables(ctx)
+    rows, fit_rows, settings = sweep_tables(run)
     write_page(
-        ctx.outdir, SWEEP_TEMPLATE,
-        case=ctx.sweep("case") or ctx.outdir.name, key=ctx.sweep("key") or "", status=status,
-        run=run, verdicts=sweep_verdicts(ctx), points=rows, fit=fit_rows,
+        run.outdir, SWEEP_TEMPLATE,
+        case=run.sweep("case") or run.outdir.name, key=run.sweep("key") or "", status=status,
+        run=settings, verdicts=sweep_verdicts(run), points=rows, fit=fit_rows,
         figures=figures, skipped=skipped, failed=failed, warnings=warn,
-        raw=json.dumps(ctx.without_points(), indent=2),
-        generated=generated_at(), source=str(ctx.sweep_path),
+        raw=json.dumps(run.without_points(), indent=2),
+        generated=generated_at(), source=str(run.sweep_path),
     )
     return figures, skipped, failed
 
@@ -81,33 +81,33 @@ def build(outdir, strict=False):
     """Write DIR/report.html and DIR/figures/*.png: a sweep page for a sweep folder, else a run page."""
     if is_sweep_folder(outdir):
         return build_sweep(outdir, strict)
-    ctx = Run(outdir)
-    ctx.figdir = figure_folder(ctx.outdir)
-    has_md, has_cmp = ctx.has_md(), ctx.has_compare()
+    run = Run(outdir)
+    run.figdir = figure_folder(run.outdir)
+    has_md, has_cmp = run.has_md(), run.has_compare()
     # no particle run: no MD entries at all; no comparison: no side-by-side entries
     figures, skipped, failed = draw_figures(
-        "run", ctx, ctx.figdir, strict,
+        "run", run, run.figdir, strict,
         list_skip=lambda spec: not ((spec.section == "md" and not has_md)
                                     or (spec.section == "compare" and not has_cmp)))
 
-    if isinstance(ctx.config_text, str) and ctx.config_text.strip():
-        config_block = ctx.config_text.rstrip()
+    if isinstance(run.config_text, str) and run.config_text.strip():
+        config_block = run.config_text.rstrip()
     else:
-        config_block = "\n".join(f"{k} = {v}" for k, v in sorted(ctx.attrs.items())
+        config_block = "\n".join(f"{k} = {v}" for k, v in sorted(run.attrs.items())
                                  if k not in ("config_toml",)) or "(no configuration stored in results.h5)"
 
     write_page(
-        ctx.outdir, RUN_TEMPLATE,
-        case=ctx.top_summary("case") or ctx.attrs.get("case") or ctx.outdir.name,
-        status=ctx.top_summary("status"),
-        header=header_rows(ctx),
+        run.outdir, RUN_TEMPLATE,
+        case=run.top_summary("case") or run.attrs.get("case") or run.outdir.name,
+        status=run.top_summary("status"),
+        header=header_rows(run),
         figures=[f for f in figures if f["section"] != "compare"],
         cmp_figures=[f for f in figures if f["section"] == "compare"],
-        compare=compare_section(ctx),
-        skipped=skipped, failed=failed, warnings=ctx.warnings,
-        engines=engine_tables(ctx), snapshots=snapshot_table(ctx),
+        compare=compare_section(run),
+        skipped=skipped, failed=failed, warnings=run.warnings,
+        engines=engine_tables(run), snapshots=snapshot_table(run),
         md_units=any(f["section"] == "md" for f in figures),
-        config=config_block, groups=ctx.groups, paper=Markup(PAPER),
-        generated=generated_at(), source=str(ctx.results_path),
+        config=config_block, groups=run.groups, paper=Markup(PAPER),
+        generated=generated_at(), source=str(run.results_path),
     )
     return figures, skipped, failed

@@ -68,14 +68,14 @@ def figures_of(page):
     return sorted((f for f in FIGURES if SECTIONS[f.section] == page), key=lambda f: order.index(f.section))
 
 
-def draw_figures(page, ctx, figdir, strict, list_skip=lambda spec: True):
+def draw_figures(page, run, figdir, strict, list_skip=lambda spec: True):
     """Each figure of the page drawn: (figures, skipped, failed). A figure is a dict for the templates
     (id, title, img, paper, measured, note, section). A skipped or failed figure's stale PNG of an
     earlier run is removed; list_skip(spec) says whether a skip is worth listing on the page."""
     figures, skipped, failed = [], [], []
     for spec in figures_of(page):
         try:
-            d = spec.draw(ctx)
+            d = spec.draw(run)
             img = save(d.fig, figdir, spec.file)
             figures.append({"id": spec.anchor, "title": spec.title, "img": img, "section": spec.section,
                             "paper": Markup(spec.caption.format(**d.caption_values)),

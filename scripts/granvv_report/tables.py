@@ -14,10 +14,10 @@ def status_badge(status):
     return Markup(f'<span class="status {escape(str(status))}">{fmt(status)}</span>') if status else fmt(None)
 
 
-def compare_section(ctx):
+def compare_section(run):
     """The verdict box and the tables of the side-by-side section, or None without /compare."""
-    C = ctx.compare
-    c = ctx.compare_summary() or {}
+    C = run.compare
+    c = run.compare_summary() or {}
     if C is None and not c:
         return None
     attrs = C["attrs"] if C else {}
@@ -41,7 +41,7 @@ def compare_section(ctx):
                         "the difference is noise-driven, not a failure of the hydro."),
         "model": Markup(f"The signal is clear of the noise (signal/noise = {sn_txt}): the difference is the hydro's."),
     }.get(kind, Markup(f"Disagreement kind: {escape(kind) or '—'} (signal/noise = {sn_txt})."))
-    L = cmp_box(ctx)
+    L = cmp_box(run)
     w, left, first = (cmp_window(C) if C else
                       (num(c.get("agreement_window")), num(c.get("left_at")), c.get("first_field_to_leave") or ""))
     t = arr(C, "t", 1) if C else None
@@ -72,7 +72,7 @@ def compare_section(ctx):
             if g is None:
                 continue
             cols = {k: cmp_vec(g, k, t.size) for k in ("l1", "l2", "linf", "fraction_within", "worst_z")}
-            agrees = ctx.compare_summary("fields", key, "agrees") or []   # the program's verdict per time
+            agrees = run.compare_summary("fields", key, "agrees") or []   # the program's verdict per time
             trs = []
             for i in range(t.size):
                 trs.append({"bad": i < len(agrees) and agrees[i] is False,
@@ -84,13 +84,13 @@ def compare_section(ctx):
     # Haff: the particles' measured t0 against kinetic theory and the hydro's K/4q
     h = c.get("haff") if isinstance(c.get("haff"), dict) else {}
     t0m = num(h.get("t0_measured")) if h else None
-    t0m = t0m if t0m is not None else md_value(ctx, "haff_t0_measured")
+    t0m = t0m if t0m is not None else md_value(run, "haff_t0_measured")
     t0e = num(h.get("t0_measured_error")) if h else None
-    t0e = t0e if t0e is not None else md_value(ctx, "haff_t0_measured_error")
+    t0e = t0e if t0e is not None else md_value(run, "haff_t0_measured_error")
     t0c = num(h.get("t0_theory_enskog")) if h else None
-    t0c = t0c if t0c is not None else md_value(ctx, "haff_t0_theory")
+    t0c = t0c if t0c is not None else md_value(run, "haff_t0_theory")
     t0d = num(h.get("t0_theory_dilute")) if h else None
-    t0d = t0d if t0d is not None else md_value(ctx, "haff_t0_theory_dilute")
+    t0d = t0d if t0d is not None else md_value(run, "haff_t0_theory_dilute")
     t0h = num(h.get("t0_hydro")) if h else None
     # t0_measured / t0 - 1 and (t0_measured - t0) / its fit error, against each reference: the
     # comparison's haff block, else (no comparison block) the particle engine's own numbers
@@ -99,8 +99,8 @@ def compare_section(ctx):
                 (h.get("deviation_dilute"), h.get("deviation_dilute_sigmas")),
                 (h.get("measured_deviation_from_hydro"), h.get("deviation_hydro_sigmas"))]
     else:
-        devs = [(ctx.md_summary("haff_t0_deviation"), ctx.md_summary("haff_t0_deviation_sigmas")),
-                (ctx.md_summary("haff_t0_deviation_dilute"), None), (None, None)]
+        devs = [(run.md_summary("haff_t0_deviation"), run.md_summary("haff_t0_deviation_sigmas")),
+                (run.md_summary("haff_t0_deviation_dilute"), None), (None, None)]
 
     unit = Markup(" σ(m/T<sub>0</sub>)<sup>1/2</sup>")
     haff = [("measured (fit of the MD's T(t))", Markup(f"{fmt(t0m)} ± {fmt(t0e, 2)}{unit}") if t0m is not None else fmt(None),
@@ -131,17 +131,17 @@ def compare_section(ctx):
             "sigmas": fmt(sig), "haff": haff, "cost": cost_rows, "notes": notes}
 
 
-def header_rows(ctx):
+def header_rows(run):
     """The rows of the run table at the top of the page."""
-    h = ctx.hydro_summary() or {}
-    ref = ctx.config_table("case", "reference") or ctx.config_table("reference") or ctx.attrs.get("case.reference")
-    desc = (ctx.config_table("case", "description") or ctx.config_table("description")
-            or ctx.attrs.get("case.description"))
+    h = run.hydro_summary() or {}
+    ref = run.config_table("case", "reference") or run.config_table("reference") or run.attrs.get("case.reference")
+    desc = (run.config_table("case", "description") or run.config_table("description")
+            or run.attrs.get("case.description"))
     rows = [
-        ("case", fmt(ctx.top_summary("case") or ctx.attrs.get("case"))),
+        ("case", fmt(run.top_summary("case") or run.attrs.get("case"))),
         ("reference", fmt(ref)),
         ("description", fmt(desc)) if desc else None,
-        ("status", status_badge(ctx.top_summary("status"))),
+        ("status", status_badge(run.top_summary("status"))),
         ("hydro status", fmt(h.get("status"))),
         ("stop reason", fmt(h.get("stop_reason"))),
         ("final time", fmt(num(h.get("t_final")))) if num(h.get("t_final")) is not None else None,
@@ -150,14 +150,14 @@ def header_rows(ctx):
         ("steps", fmt(h.get("steps"))),
         ("cell-steps / s", fmt(num(h.get("cell_steps_per_second")), 3)),
     ]
-    md = ctx.md_summary()
-    md_attrs = (ctx.md_group or {}).get("attrs") or {}
+    md = run.md_summary()
+    md_attrs = (run.md_group or {}).get("attrs") or {}
     if isinstance(md, dict) or md_attrs:
-        rows += md_header_rows(md if isinstance(md, dict) else {}, md_attrs, ctx.config_table("md") or {})
-    w = num(ctx.compare_summary("wall_seconds"))
+        rows += md_header_rows(md if isinstance(md, dict) else {}, md_attrs, run.config_table("md") or {})
+    w = num(run.compare_summary("wall_seconds"))
     if w is not None:
         rows.append(("wall time (compare)", Markup(f"{fmt(w, 3)} s")))
-    rows.append(("granvv version", fmt(ctx.top_summary("granvv_version") or ctx.attrs.get("granvv_version"))))
+    rows.append(("granvv version", fmt(run.top_summary("granvv_version") or run.attrs.get("granvv_version"))))
     return [r for r in rows if r]
 
 
@@ -221,14 +221,14 @@ def flatten(d, prefix=""):
     return out
 
 
-def engine_tables(ctx):
+def engine_tables(run):
     """One table per engine block of summary.json (without the snapshot list)."""
     return [{"name": eng, "rows": flatten({k: v for k, v in block.items() if k != "snapshots"})}
-            for eng, block in ctx.engine_blocks()]
+            for eng, block in run.engine_blocks()]
 
 
-def snapshot_table(ctx):
-    snaps = ctx.hydro_summary("snapshots")
+def snapshot_table(run):
+    snaps = run.hydro_summary("snapshots")
     if not isinstance(snaps, list) or not snaps:
         return None
     order = ["t", "n_max", "T_min", "energy", "energy_thermal", "energy_kinetic", "energy_kinetic_y",
@@ -246,11 +246,11 @@ def snapshot_table(ctx):
     return {"cols": cols, "rows": [[cell(get(r, c)) for c in cols] for r in snaps]}
 
 
-def sweep_verdicts(ctx):
+def sweep_verdicts(run):
     """Plain sentences: the power fit, where the paper's small-q rate departs, kinetic theory's misses."""
-    c = ctx.cooling() if isinstance(ctx.cooling(), dict) else None
+    c = run.cooling() if isinstance(run.cooling(), dict) else None
     if c is None:
-        err = ctx.sweep("cooling_error")
+        err = run.sweep("cooling_error")
         return [Markup("No cooling analysis: no point measured a Haff time with an error"
                        + (f" ({escape(err)})" if err else "") + ".")]
     sig = num(c.get("sigmas"))
@@ -286,8 +286,8 @@ def sweep_verdicts(ctx):
     return out
 
 
-def sweep_tables(ctx):
-    pts = sweep_points(ctx)
+def sweep_tables(run):
+    pts = sweep_points(run)
     rows = []
     for p in pts:
         md, c = p["md"], p["cool"] or {}
@@ -307,7 +307,7 @@ def sweep_tables(ctx):
                       Markup(f"{fmt(num(md.get('wall_seconds')), 3)} s") if num(md.get("wall_seconds")) is not None else fmt(None)],
             "link": p["link"], "dir": p["dir"],
             "bad": bool(c.get("enskog_beyond_sigmas"))})
-    fit = ctx.cooling("power_of_one_minus_r2")
+    fit = run.cooling("power_of_one_minus_r2")
     fit_rows = None
     if isinstance(fit, dict):
         p, pe = num(fit.get("power")), num(fit.get("power_error"))
@@ -316,19 +316,19 @@ def sweep_tables(ctx):
                     ("prefactor C (ζ = C (1 − r<sup>2</sup>)<sup>p</sup>, in (T<sub>0</sub>/m)<sup>1/2</sup>/σ)", fmt(num(fit.get("prefactor")), 4)),
                     ("χ<sup>2</sup> per degree of freedom", fmt(num(fit.get("chi2_per_dof")), 3)),
                     ("points in the fit, r ≥", Markup(f"{fmt(fit.get('points'))}, {fmt(num(fit.get('r_min')))}"))]
-    run = [
-        ("case", fmt(ctx.sweep("case"))),
-        ("swept key", Markup(f"<code>{escape(str(ctx.sweep('key')))}</code>")),
-        ("values", Markup(", ".join(str(fmt(v)) for v in ctx.sweep("values") or [])) if ctx.sweep("values") else fmt(None)),
-        ("fixed settings (every point)", Markup(", ".join(f"<code>{escape(str(v))}</code>" for v in ctx.sweep("fixed_sets") or []))
-         if ctx.sweep("fixed_sets") else Markup("none (the case file as it is)")),
-        ("status", status_badge(ctx.sweep("status"))),
-        ("points finished", Markup(f"{len(pts)} of {len(ctx.sweep('values') or [])}")),
-        ("wall time", Markup(f"{fmt(num(ctx.sweep('wall_seconds')), 3)} s") if num(ctx.sweep("wall_seconds")) is not None else fmt(None)),
-        ("granvv version", fmt(ctx.sweep("granvv_version"))),
+    settings = [
+        ("case", fmt(run.sweep("case"))),
+        ("swept key", Markup(f"<code>{escape(str(run.sweep('key')))}</code>")),
+        ("values", Markup(", ".join(str(fmt(v)) for v in run.sweep("values") or [])) if run.sweep("values") else fmt(None)),
+        ("fixed settings (every point)", Markup(", ".join(f"<code>{escape(str(v))}</code>" for v in run.sweep("fixed_sets") or []))
+         if run.sweep("fixed_sets") else Markup("none (the case file as it is)")),
+        ("status", status_badge(run.sweep("status"))),
+        ("points finished", Markup(f"{len(pts)} of {len(run.sweep('values') or [])}")),
+        ("wall time", Markup(f"{fmt(num(run.sweep('wall_seconds')), 3)} s") if num(run.sweep("wall_seconds")) is not None else fmt(None)),
+        ("granvv version", fmt(run.sweep("granvv_version"))),
     ]
     seeds = {(p["md"].get("seed"), p["md"].get("ensemble")) for p in pts if p["md"]}
     if seeds:
-        run.insert(4, ("seeds, ensemble members", Markup("; ".join(
+        settings.insert(4, ("seeds, ensemble members", Markup("; ".join(
             f"seed {fmt(s)}, ensemble of {fmt(e)}" for s, e in sorted(seeds, key=str)))))
-    return rows, fit_rows, run
+    return rows, fit_rows, settings
