@@ -114,23 +114,24 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
   const auto s = compare::analyse_cooling_sweep(cooling, power_r_min, sigmas);
   json rows = json::array();
   for (std::size_t i = 0; i < cooling.size(); ++i) {
-    const double enskog_sigmas = (cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error;
-    rows.push_back({{"point", index[i]},
-                    {"restitution", cooling[i].restitution},
-                    {"t0", cooling[i].t0},
-                    {"t0_error", cooling[i].t0_error},
-                    {"zeta", s.zeta[i]},
-                    {"zeta_error", s.zeta_error[i]},
-                    {"zeta_enskog", s.zeta_enskog[i]},
-                    {"zeta_dilute", s.zeta_dilute[i]},
-                    {"zeta_paper", s.zeta_paper[i]},
-                    {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
-                    {"deviation_enskog", cooling[i].t0 / cooling[i].t0_enskog - 1.0},
-                    {"deviation_enskog_sigmas", enskog_sigmas},
-                    {"enskog_beyond_sigmas", std::abs(enskog_sigmas) > sigmas},
-                    {"paper_deviation", s.paper_deviation[i]},
-                    {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]},
-                    {"paper_beyond_sigmas", std::abs(s.paper_deviation_sigmas[i]) > sigmas}});
+    rows.push_back(
+        {{"point", index[i]},
+         {"restitution", cooling[i].restitution},
+         {"t0", cooling[i].t0},
+         {"t0_error", cooling[i].t0_error},
+         {"zeta", s.zeta[i]},
+         {"zeta_error", s.zeta_error[i]},
+         {"zeta_enskog", s.zeta_enskog[i]},
+         {"zeta_dilute", s.zeta_dilute[i]},
+         {"zeta_paper", s.zeta_paper[i]},
+         {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
+         {"deviation_enskog", cooling[i].t0 / cooling[i].t0_enskog - 1.0},
+         {"deviation_enskog_sigmas", (cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error},
+         {"enskog_beyond_sigmas",
+          std::abs(cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error > sigmas},
+         {"paper_deviation", s.paper_deviation[i]},
+         {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]},
+         {"paper_beyond_sigmas", std::abs(s.paper_deviation_sigmas[i]) > sigmas}});
   }
   json power = nullptr;
   if (s.power) {
