@@ -12,6 +12,10 @@ namespace {
 
 using nlohmann::json;
 
+// Acceptance of a particle run's cooling: the fitted Haff time lies within 3 % of kinetic theory
+// with the Enskog chi(phi) (docs/physics.md §4).
+constexpr double kHaffT0Tolerance = 0.03;
+
 // One field of every snapshot as a (snapshots x bins) matrix: mean and standard error.
 void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome& out,
                           compare::EnsembleStatistics EnsembleSnapshot::*field) {
@@ -52,6 +56,8 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   for (const auto& run : out.runs) steps += run.steps;
   json snaps = json::array();
   for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
+  const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
+  const double t0_paper = sc.md_time(physics.K / (4.0 * physics.q));
   json block = {
       {"status", out.runs.back().status},
       {"engine", out.engine},
@@ -78,7 +84,13 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
       {"haff_t0_deviation", number_or_null(out.haff.t0 / out.haff_t0_theory - 1.0)},
       {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
-      {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
+      {"haff_t0_deviation_sigmas",
+       number_or_null((out.haff.t0 - out.haff_t0_theory) / out.haff.t0_error)},
+      {"haff_t0_tolerance", kHaffT0Tolerance},
+      {"haff_t0_within_tolerance",
+       std::isfinite(deviation) ? json(std::abs(deviation) <= kHaffT0Tolerance) : json()},
+      {"haff_t0_paper", t0_paper},
+      {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},

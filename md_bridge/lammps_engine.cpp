@@ -154,6 +154,7 @@ EngineDetails LammpsEngine::details() const {
     d.push_back({name + ".kn", c.kn});
     d.push_back({name + ".gamma_n", c.gamma_n});
     d.push_back({name + ".dt", c.dt});
+    d.push_back({name + ".contact_time", c.contact_time});
   };
   add("contact_initial", first_initial_);
   add("contact_final", runs_ > 1 ? first_final_ : contact_);
