@@ -6,6 +6,7 @@
 
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
@@ -57,7 +58,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   json snaps = json::array();
   for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
   const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
-  const double t0_paper = sc.md_time(physics.K / (4.0 * physics.q));
+  const double t0_paper = sc.md_time(hydro::haff_time_scale(physics));
   json block = {
       {"status", out.runs.back().status},
       {"engine", out.engine},
