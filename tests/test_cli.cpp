@@ -1,4 +1,4 @@
-// The command-line contract (DESIGN.md §3), driven through the real build/granvv binary:
+// The command-line contract (docs/outputs.md, docs/architecture.md), driven through the real build/granvv binary:
 // bad input, --dry-run, `granvv list`, a small real run and its output folder, the report, and
 // the embedded default scene. Runs use tiny meshes so the whole file takes a few seconds.
 #include <gtest/gtest.h>
