@@ -11,7 +11,7 @@
 #include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
-#include "hydro/initial_conditions.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/linear_stability.hpp"
 
@@ -44,14 +44,12 @@ class LinearGrowth : public ::testing::TestWithParam<std::tuple<int, int>> {};
 
 TEST_P(LinearGrowth, RateMatchesDispersionRelation) {
   const auto [k, branch] = GetParam();
-  InitialParameters ip;
-  ip.type = "linear_mode";
-  ip.mode = k;
-  ip.linear_branch = branch;
-  ip.linear_amplitude = 1e-6;
+  const ParameterSet linear_mode = {
+      {"mode", (long long)k}, {"linear_branch", (long long)branch}, {"linear_amplitude", 1e-6}};
   const auto modes = hcs_modes(kPhysics, k);
   const int cells = k <= 5 ? 1000 : 2000;
-  const auto states = evolve(make_initial_fields(ip, kPhysics), modes[branch].rate, cells);
+  const auto states = evolve(find_initial_condition("linear_mode").generate(linear_mode, kPhysics),
+                             modes[branch].rate, cells);
   const MeasuredRate r = measure_linear_rate(states, kClosure, k, branch);
   EXPECT_LT(r.relative_error, 1e-3) << "k = " << k << " branch " << branch << ": measured "
                                     << r.measured << ", theory " << r.theory;
@@ -67,9 +65,7 @@ INSTANTIATE_TEST_SUITE_P(UnstableAndStable, LinearGrowth,
 
 TEST(LinearGrowth, ShearModeOfTransverseVelocity) {
   for (int k : {1, 3, 6, 12}) {  // shear-unstable iff pi k K < 2 sqrt(q): k <= 6
-    InitialParameters ip;
-    ip.type = "uniform";
-    InitialFields fields = make_initial_fields(ip, kPhysics);
+    InitialFields fields = uniform_fields();
     const double kx = 2 * M_PI * k;
     fields.vy = [kx](double x) { return 1e-6 * std::cos(kx * x); };
     const double rate = shear_rate(kPhysics, k);
