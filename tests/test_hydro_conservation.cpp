@@ -9,16 +9,15 @@
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/initial_condition_registry.hpp"
+#include "support/run_control.hpp"
 
 namespace granvv::hydro {
 namespace {
 
 RunResult run_scene(const InitialParameters& ip, const Physics& p, int cells, double t_end,
                     bool transverse = false) {
-  RunControl control;
-  control.t_end = t_end;
   return run_hydro(DiluteClosure(p), discretize(make_initial_fields(ip, p), cells, 0.5, transverse),
-                   control);
+                   testing::run_control(t_end));
 }
 
 TEST(HydroConservation, SingleModeConservesMassMomentumAndEnergyToRoundOff) {
@@ -41,8 +40,7 @@ TEST(HydroConservation, RandomModesWithTransverseFlowConserveEnergy) {
   const ParameterSet random_modes = {
       {"random_modes", 40LL}, {"random_amplitude", 2e-3}, {"seed", 1LL}};
   Physics p{2e-3, 0.01};
-  RunControl control;
-  control.t_end = 0.5;
+  const RunControl control = testing::run_control(0.5);
   auto state =
       discretize(find_initial_condition("random_modes").generate(random_modes, p), 300, 0.5, true);
   for (int j = 0; j < state.cells(); ++j)
@@ -67,6 +65,18 @@ TEST(HydroConservation, HomogeneousStateFollowsHaffsLaw) {
   }
   // The cooling step is the exact solution at fixed density, so only round-off remains.
   EXPECT_LT(worst, 1e-12);
+}
+
+// The controls have no defaults of their own (the case schema holds them): an unset control
+// is refused rather than run with a zero time step.
+TEST(HydroConservation, RunRefusesAControlWithoutTimeStepBounds) {
+  RunControl control;
+  control.t_end = 0.1;
+  const auto state = discretize(uniform_fields(), 16, 0.5, false);
+  EXPECT_THROW(run_hydro(DiluteClosure({4e-4, 0.01}), state, control), std::invalid_argument);
+  control = testing::run_control(0.1);
+  control.series_every = 0;
+  EXPECT_THROW(run_hydro(DiluteClosure({4e-4, 0.01}), state, control), std::invalid_argument);
 }
 
 }  // namespace

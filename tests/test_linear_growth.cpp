@@ -14,6 +14,7 @@
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/linear_stability.hpp"
+#include "support/run_control.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -28,10 +29,8 @@ std::vector<LagrangianState> evolve(const InitialFields& fields, std::complex<do
   const double t0 = haff_time_scale(kPhysics);
   const double s_end = std::min(0.4, 3.0 / std::abs(rate.real()));
   const int samples = std::max(20, int(std::ceil(s_end * std::abs(rate.imag()) / 0.3)));
-  RunControl control;
-  control.time_step.cfl = 0.5;
   auto time_of = [t0](double s) { return t0 * std::expm1(s / t0); };
-  control.t_end = time_of(s_end);
+  RunControl control = testing::run_control(time_of(s_end), 0.5);
   for (int i = 1; i <= samples; ++i) control.output_times.push_back(time_of(s_end * i / samples));
   const RunResult r = run_hydro(kClosure, discretize(fields, cells, 0.5, transverse), control);
   EXPECT_EQ(r.status, RunStatus::completed) << r.stop_reason;
