@@ -52,122 +52,131 @@ std::vector<KeySpec> initial_condition_rows() {
   }
   return rows;
 }
+
+// `rows` with the [initial] rows inserted after the last [physics] row.
+std::vector<KeySpec> with_initial_condition_rows(std::vector<KeySpec> rows) {
+  auto after_physics = rows.begin();
+  for (auto it = rows.begin(); it != rows.end(); ++it) {
+    if (it->section() == "physics") after_physics = it + 1;
+  }
+  const std::vector<KeySpec> initial = initial_condition_rows();
+  rows.insert(after_physics, initial.begin(), initial.end());
+  return rows;
+}
+
+// Every row but the [initial] ones (with_initial_condition_rows), in schema order.
+std::vector<KeySpec> rows_without_initial() {
+  return {
+      // [case]
+      {"case.name", kString, kFileStem, name_like(), "scene name; output goes to out/<name>"},
+      {"case.description", kString, "", any_value(), "one-line description for `granvv list`"},
+      {"case.reference", kString, "", any_value(),
+       "paper, figure or equation the scene reproduces"},
+
+      // [physics]
+      {"physics.K", kReal, kRequired, positive(),
+       "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0)"},
+      {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
+
+      // [initial]: initial.type and the parameters its generators declare (hydro/initial_*.cpp),
+      // inserted here by with_initial_condition_rows().
+
+      // [hydro]
+      {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
+      {"hydro.t_end", kReal, 4.0, positive(),
+       "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
+      {"hydro.output_times", kReals, kEmpty, increasing(non_negative()),
+       "times at which fields are written"},
+      {"hydro.cfl", kReal, 2.0, open_closed(0, 20),
+       "acoustic Courant number (pressure is implicit in its adiabatic part, so > 1 is stable)"},
+      {"hydro.max_compression", kReal, 0.1, open_closed(0, 0.5),
+       "largest relative change of a cell width per step"},
+      {"hydro.max_temperature_change", kReal, 0.2, open_open(0, 1),
+       "largest relative change of a cell temperature per step"},
+      {"hydro.dt_max", kReal, 0.05, positive(), "largest time step"},
+      {"hydro.stop_density", kReal, 1e6, greater_than(1),
+       "stop (singularity) when the peak density exceeds this"},
+      {"hydro.min_cell_width", kReal, 1e-14, positive(),
+       "stop (singularity) when a cell gets narrower than this"},
+      {"hydro.transverse_velocity", kBoolean, false, any_value(),
+       "evolve the transverse velocity v_y"},
+      {"hydro.node_offset", kReal, 0.5, closed_open(0, 1),
+       "position of the first node in units of the cell width"},
+      {"hydro.progress_seconds", kReal, 2.0, positive(),
+       "wall-clock seconds between progress lines"},
+      {"hydro.series_every", kInteger, 1, at_least(1), "write the time series every N steps"},
+
+      // [analysis]
+      {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),
+       "lowest peak density used in the singularity-time fit"},
+      {"analysis.tau_fit_max_density", kReal, 1e4, greater_than(1),
+       "highest peak density used in the singularity-time fit"},
+      {"analysis.profile_fit_x_min", kReal, 1e-3, positive(),
+       "smallest distance from the peak used in the profile fit"},
+      {"analysis.profile_fit_x_max", kReal, 2e-2, positive(),
+       "largest distance from the peak used in the profile fit"},
+      {"analysis.collapse_tolerance", kReal, 0.015, positive(),
+       "relative tolerance of the self-similar profile collapse"},
+
+      // [convergence]
+      {"convergence.cells", kIntegers, kEmpty, increasing(at_least(4)),
+       "cell counts of the convergence study (empty = no study)"},
+      {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
+      {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
+       "Courant number of the study; its step is also capped at cfl/cells, so dt ~ h"},
+
+      // [md]: the particle engine (LAMMPS, 2D inelastic disks; sigma = m = T0 = 1, times in
+      // sigma sqrt(m/T0)). The scene is given either in particle terms (md.particles > 0) or
+      // by physics.K through the scaled mapping (md.particles = 0), docs/physics.md §4.
+      {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
+      {"md.particles", kInteger, 0, at_least(0),
+       "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
+      {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
+      {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
+      {"md.restitution", kReal, 0.0, closed_closed(0, 1),
+       "coefficient of normal restitution r; 0 = 1 - 2 physics.q"},
+      {"md.seed", kInteger, 1, at_least(0),
+       "seed of the particle sample (ensemble member m: seed + m)"},
+      {"md.ensemble", kInteger, 1, at_least(1), "number of independent seeds"},
+      {"md.t_end", kReal, 100.0, positive(), "end time in MD units"},
+      {"md.output_times", kReals, kEmpty, increasing(non_negative()),
+       "snapshot times of the coarse-grained fields, MD units"},
+      {"md.sample_interval", kReal, 1.0, positive(), "time between time-series samples, MD units"},
+      {"md.bins", kInteger, 100, at_least(1), "coarse-graining bins along x"},
+      {"md.kernel", kString, "bin", one_of({"bin", "gaussian", "lucy"}), "coarse-graining kernel"},
+      {"md.kernel_width", kReal, 0.0, non_negative(),
+       "kernel width in sigma (gaussian, lucy); 0 for bins"},
+      {"md.max_overlap", kReal, 0.01, open_closed(0, 0.1),
+       "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
+      {"md.steps_per_contact", kInteger, 30, at_least(10), "time steps per contact duration"},
+      {"md.adaptive_stiffness", kBoolean, true, any_value(),
+       "lower kn and raise dt as the gas cools, restitution fixed"},
+      {"md.snapshot_interval", kReal, 0.0, non_negative(),
+       "H5MD particle snapshots every this much MD time; 0 = none"},
+      {"md.time_unit", kString, "md", one_of({"md", "haff"}),
+       "unit of md.t_end, md.sample_interval and md.output_times: MD time (sigma sqrt(m/T0)) "
+       "or the kinetic-theory Haff time t0 with chi(phi) (same cooling depth for every r)"},
+
+      // [compare]: hydro and coarse-grained particles side by side (needs md.enabled). The
+      // compared times are md.output_times; the hydro runs to md.t_end (both in scaled units).
+      {"compare.enabled", kBoolean, false, any_value(),
+       "run hydro and MD side by side and compare the fields"},
+      {"compare.hydro_initial", kString, "md", one_of({"md", "case"}),
+       "hydro start: the MD's coarse-grained t = 0 fields (ensemble mean), or the case's "
+       "initial fields as given to the MD"},
+      {"compare.sigmas", kReal, 3.0, positive(),
+       "a bin agrees when |hydro - MD| < sigmas standard errors of the MD mean"},
+      {"compare.agreement_fraction", kReal, 0.95, open_closed(0, 1),
+       "a field agrees at a time when at least this fraction of its bins agree"},
+      {"compare.density_modes", kInteger, 0, at_least(0),
+       "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
+  };
+}
+
 }  // namespace
 
 const std::vector<KeySpec>& case_schema() {
-  static const std::vector<KeySpec> rows = [] {
-    std::vector<KeySpec> rows = {
-        // [case]
-        {"case.name", kString, kFileStem, name_like(), "scene name; output goes to out/<name>"},
-        {"case.description", kString, "", any_value(), "one-line description for `granvv list`"},
-        {"case.reference", kString, "", any_value(),
-         "paper, figure or equation the scene reproduces"},
-
-        // [physics]
-        {"physics.K", kReal, kRequired, positive(),
-         "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0)"},
-        {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
-
-        // [initial]: initial.type and the parameters its generators declare (hydro/initial_*.cpp),
-        // appended by initial_condition_rows().
-    };
-    const std::vector<KeySpec> rest = {
-        // [hydro]
-        {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
-        {"hydro.t_end", kReal, 4.0, positive(),
-         "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
-        {"hydro.output_times", kReals, kEmpty, increasing(non_negative()),
-         "times at which fields are written"},
-        {"hydro.cfl", kReal, 2.0, open_closed(0, 20),
-         "acoustic Courant number (pressure is implicit in its adiabatic part, so > 1 is stable)"},
-        {"hydro.max_compression", kReal, 0.1, open_closed(0, 0.5),
-         "largest relative change of a cell width per step"},
-        {"hydro.max_temperature_change", kReal, 0.2, open_open(0, 1),
-         "largest relative change of a cell temperature per step"},
-        {"hydro.dt_max", kReal, 0.05, positive(), "largest time step"},
-        {"hydro.stop_density", kReal, 1e6, greater_than(1),
-         "stop (singularity) when the peak density exceeds this"},
-        {"hydro.min_cell_width", kReal, 1e-14, positive(),
-         "stop (singularity) when a cell gets narrower than this"},
-        {"hydro.transverse_velocity", kBoolean, false, any_value(),
-         "evolve the transverse velocity v_y"},
-        {"hydro.node_offset", kReal, 0.5, closed_open(0, 1),
-         "position of the first node in units of the cell width"},
-        {"hydro.progress_seconds", kReal, 2.0, positive(),
-         "wall-clock seconds between progress lines"},
-        {"hydro.series_every", kInteger, 1, at_least(1), "write the time series every N steps"},
-
-        // [analysis]
-        {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),
-         "lowest peak density used in the singularity-time fit"},
-        {"analysis.tau_fit_max_density", kReal, 1e4, greater_than(1),
-         "highest peak density used in the singularity-time fit"},
-        {"analysis.profile_fit_x_min", kReal, 1e-3, positive(),
-         "smallest distance from the peak used in the profile fit"},
-        {"analysis.profile_fit_x_max", kReal, 2e-2, positive(),
-         "largest distance from the peak used in the profile fit"},
-        {"analysis.collapse_tolerance", kReal, 0.015, positive(),
-         "relative tolerance of the self-similar profile collapse"},
-
-        // [convergence]
-        {"convergence.cells", kIntegers, kEmpty, increasing(at_least(4)),
-         "cell counts of the convergence study (empty = no study)"},
-        {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
-        {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
-         "Courant number of the study; its step is also capped at cfl/cells, so dt ~ h"},
-
-        // [md]: the particle engine (LAMMPS, 2D inelastic disks; sigma = m = T0 = 1, times in
-        // sigma sqrt(m/T0)). The scene is given either in particle terms (md.particles > 0) or
-        // by physics.K through the scaled mapping (md.particles = 0), DESIGN.md §4.
-        {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
-        {"md.particles", kInteger, 0, at_least(0),
-         "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
-        {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
-        {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
-        {"md.restitution", kReal, 0.0, closed_closed(0, 1),
-         "coefficient of normal restitution r; 0 = 1 - 2 physics.q"},
-        {"md.seed", kInteger, 1, at_least(0),
-         "seed of the particle sample (ensemble member m: seed + m)"},
-        {"md.ensemble", kInteger, 1, at_least(1), "number of independent seeds"},
-        {"md.t_end", kReal, 100.0, positive(), "end time in MD units"},
-        {"md.output_times", kReals, kEmpty, increasing(non_negative()),
-         "snapshot times of the coarse-grained fields, MD units"},
-        {"md.sample_interval", kReal, 1.0, positive(),
-         "time between time-series samples, MD units"},
-        {"md.bins", kInteger, 100, at_least(1), "coarse-graining bins along x"},
-        {"md.kernel", kString, "bin", one_of({"bin", "gaussian", "lucy"}),
-         "coarse-graining kernel"},
-        {"md.kernel_width", kReal, 0.0, non_negative(),
-         "kernel width in sigma (gaussian, lucy); 0 for bins"},
-        {"md.max_overlap", kReal, 0.01, open_closed(0, 0.1),
-         "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
-        {"md.steps_per_contact", kInteger, 30, at_least(10), "time steps per contact duration"},
-        {"md.adaptive_stiffness", kBoolean, true, any_value(),
-         "lower kn and raise dt as the gas cools, restitution fixed"},
-        {"md.snapshot_interval", kReal, 0.0, non_negative(),
-         "H5MD particle snapshots every this much MD time; 0 = none"},
-        {"md.time_unit", kString, "md", one_of({"md", "haff"}),
-         "unit of md.t_end, md.sample_interval and md.output_times: MD time (sigma sqrt(m/T0)) "
-         "or the kinetic-theory Haff time t0 with chi(phi) (same cooling depth for every r)"},
-
-        // [compare]: hydro and coarse-grained particles side by side (needs md.enabled). The
-        // compared times are md.output_times; the hydro runs to md.t_end (both in scaled units).
-        {"compare.enabled", kBoolean, false, any_value(),
-         "run hydro and MD side by side and compare the fields"},
-        {"compare.hydro_initial", kString, "md", one_of({"md", "case"}),
-         "hydro start: the MD's coarse-grained t = 0 fields (ensemble mean), or the case's "
-         "initial fields as given to the MD"},
-        {"compare.sigmas", kReal, 3.0, positive(),
-         "a bin agrees when |hydro - MD| < sigmas standard errors of the MD mean"},
-        {"compare.agreement_fraction", kReal, 0.95, open_closed(0, 1),
-         "a field agrees at a time when at least this fraction of its bins agree"},
-        {"compare.density_modes", kInteger, 0, at_least(0),
-         "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
-    };
-    for (KeySpec& row : initial_condition_rows()) rows.push_back(std::move(row));
-    rows.insert(rows.end(), rest.begin(), rest.end());
-    return rows;
-  }();
+  static const std::vector<KeySpec> rows = with_initial_condition_rows(rows_without_initial());
   return rows;
 }
 
