@@ -9,6 +9,7 @@
 
 #include "app/case_config.hpp"
 #include "hydro/initial_condition_registry.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
 
 namespace granvv::app {
 
@@ -125,10 +126,12 @@ std::vector<KeySpec> rows_without_initial() {
       {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
        "Courant number of the study; its step is also capped at cfl/cells, so dt ~ h"},
 
-      // [md]: the particle engine (LAMMPS, 2D inelastic disks; sigma = m = T0 = 1, times in
+      // [md]: the particle engine (2D inelastic disks; sigma = m = T0 = 1, times in
       // sigma sqrt(m/T0)). The scene is given either in particle terms (md.particles > 0) or
       // by physics.K through the scaled mapping (md.particles = 0), docs/physics.md §4.
       {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
+      {"md.engine", kString, "lammps", one_of(md::particle_engine_names()),
+       "particle engine (md_bridge/particle_engine_registry.cpp)"},
       {"md.particles", kInteger, 0, at_least(0),
        "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
       {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},

@@ -1,7 +1,10 @@
 #include "app/compare_output.hpp"
 
+#include <algorithm>
+
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "app/md_output.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::app {
@@ -61,6 +64,16 @@ json modes_summary(const CompareOutcome& out) {
           {"growth_theory", growth(out.theory_modes)}};
 }
 
+// Whether the hydro's Haff time misses the particles' measured one by more than 10 % and by more
+// than 3 fit errors: then the hydro's K, q do not describe the particle box (docs/physics.md §4),
+// and differences in T come from the cooling rate whatever the signal-to-noise classification says.
+json hydro_cools_differently(double t0_hydro, const compare::HaffFit& haff) {
+  if (!std::isfinite(haff.t0) || !std::isfinite(haff.t0_error) || !(haff.t0_error > 0))
+    return nullptr;
+  return std::abs(t0_hydro / haff.t0 - 1.0) > 0.1 &&
+         std::abs(t0_hydro - haff.t0) > 3.0 * haff.t0_error;
+}
+
 }  // namespace
 
 json compare_summary(const CompareScene& scene, const HydroScene& hydro,
@@ -71,6 +84,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   for (const auto& f : out.fields) {
     json& entry = fields[f.name];
     for (const auto& [name, metric] : kMetrics) entry[name] = numbers(per_time(f.track, metric));
+    json agrees = json::array();
+    for (const auto& d : f.track.at)
+      agrees.push_back(compare::field_agrees(d, scene.agreement_fraction));
+    entry["agrees"] = agrees;
+    entry["agrees_throughout"] =
+        std::all_of(agrees.begin(), agrees.end(), [](const json& a) { return a.get<bool>(); });
     entry["error_source"] = f.error_source;
   }
   const auto& run = hydro_out.run;
@@ -113,7 +132,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
         {"deviation_dilute", number_or_null(haff.t0 / md_out.haff_t0_theory_dilute - 1.0)},
         {"deviation_hydro", number_or_null(t0_hydro / haff.t0 - 1.0)},
         {"deviation_enskog_sigmas",
-         number_or_null((haff.t0 - md_out.haff_t0_theory) / haff.t0_error)}}},
+         number_or_null((haff.t0 - md_out.haff_t0_theory) / haff.t0_error)},
+        {"deviation_dilute_sigmas",
+         number_or_null((haff.t0 - md_out.haff_t0_theory_dilute) / haff.t0_error)},
+        {"measured_deviation_from_hydro", number_or_null(haff.t0 / t0_hydro - 1.0)},
+        {"deviation_hydro_sigmas", number_or_null((haff.t0 - t0_hydro) / haff.t0_error)},
+        {"hydro_cools_differently", hydro_cools_differently(t0_hydro, haff)}}},
       {"cost",
        {{"hydro",
          {{"wall_seconds", run.wall_seconds},
@@ -122,11 +146,12 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
           {"cell_steps", cell_steps},
           {"cell_steps_per_second", number_or_null(cell_steps / run.wall_seconds)}}},
         {"md",
-         {{"wall_seconds", md_out.wall_seconds},
-          {"particles", sc.particles},
-          {"ensemble", md.ensemble},
-          {"atom_steps", md_out.atom_steps},
-          {"atom_steps_per_second", number_or_null(md_out.atom_steps / md_out.wall_seconds)}}},
+         [&] {
+           json cost = md_cost_summary(md_out);
+           cost["particles"] = sc.particles;
+           cost["ensemble"] = md.ensemble;
+           return cost;
+         }()},
         {"md_to_hydro_wall_ratio", number_or_null(md_out.wall_seconds / run.wall_seconds)}}},
       {"peak",
        {{"hydro_n", numbers(out.hydro_n_peak)},

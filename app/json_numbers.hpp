@@ -1,5 +1,5 @@
 #pragma once
-// summary.json convention (DESIGN.md §3): numbers are numbers, absent results are null.
+// summary.json convention (docs/outputs.md): numbers are numbers, absent results are null.
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>

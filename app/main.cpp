@@ -1,4 +1,4 @@
-// granvv: granular hydrodynamics side by side with particle simulations (DESIGN.md §3).
+// granvv: granular hydrodynamics side by side with particle simulations (docs/architecture.md).
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>

@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
 
 using nlohmann::json;
+
+// Acceptance of a particle run's cooling: the fitted Haff time lies within 3 % of kinetic theory
+// with the Enskog chi(phi) (docs/physics.md §4).
+constexpr double kHaffT0Tolerance = 0.03;
 
 // One field of every snapshot as a (snapshots x bins) matrix: mean and standard error.
 void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome& out,
@@ -24,28 +30,45 @@ void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome
   write_matrix(g, name + "_stderr", err, out.snapshots.size());
 }
 
+// The engine's own results at their dotted keys ("contact_initial.kn" -> {"contact_initial":
+// {"kn": ...}}).
+void add_engine_details(json& block, const md::EngineDetails& details) {
+  for (const auto& detail : details) {
+    std::string pointer = "/" + detail.key;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    std::visit([&](const auto& value) { block[json::json_pointer(pointer)] = value; },
+               detail.value);
+  }
+}
+
 }  // namespace
+
+json md_cost_summary(const MdOutcome& out) {
+  return {{"wall_seconds", out.wall_seconds},
+          {out.cost.work_unit, out.cost.work},
+          {out.cost.work_unit + "_per_second", number_or_null(out.cost.per_second())}};
+}
 
 json md_summary(const MdScene& scene, const MdOutcome& out) {
   const auto& sc = scene.spec.scene;
   const SignalToNoise sn = initial_signal_to_noise(scene);
   const auto physics = sc.physics();
   long long steps = 0;
-  int changes = 0;
-  for (const auto& run : out.runs) steps += run.steps, changes += run.stiffness_changes;
+  for (const auto& run : out.runs) steps += run.steps;
   json snaps = json::array();
   for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
-  const auto& c0 = out.runs.front().initial_contact;
-  const auto& c1 = out.runs.front().final_contact;
-  return {
+  const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
+  const double t0_paper = sc.md_time(hydro::haff_time_scale(physics));
+  json block = {
       {"status", out.runs.back().status},
-      {"wall_seconds", out.wall_seconds},
+      {"engine", out.engine},
       {"particles", sc.particles},
       {"box_length", sc.box_length},
       {"box_width", sc.box_width},
       {"area_fraction", sc.area_fraction},
       {"restitution", sc.restitution},
-      {"restitution_measured", out.restitution_measured},
+      {"restitution_measured", out.collision_rule.restitution},
+      {"restitution_check", out.collision_rule.description},
       {"K", physics.K},
       {"q", physics.q},
       {"unstable_modes", sc.unstable_modes()},
@@ -54,11 +77,6 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"seed", scene.spec.seed},
       {"t_end", scene.spec.t_end},
       {"steps", steps},
-      {"atom_steps", out.atom_steps},
-      {"atom_steps_per_second", number_or_null(out.atom_steps / out.wall_seconds)},
-      {"stiffness_changes", changes},
-      {"contact_initial", {{"kn", c0.kn}, {"gamma_n", c0.gamma_n}, {"dt", c0.dt}}},
-      {"contact_final", {{"kn", c1.kn}, {"gamma_n", c1.gamma_n}, {"dt", c1.dt}}},
       {"haff_t0_measured", number_or_null(out.haff.t0)},
       {"haff_t0_measured_error", number_or_null(out.haff.t0_error)},
       {"haff_T0_measured", number_or_null(out.haff.T0)},
@@ -67,12 +85,21 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
       {"haff_t0_deviation", number_or_null(out.haff.t0 / out.haff_t0_theory - 1.0)},
       {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
-      {"haff_t0_paper", sc.md_time(physics.K / (4.0 * physics.q))},
+      {"haff_t0_deviation_sigmas",
+       number_or_null((out.haff.t0 - out.haff_t0_theory) / out.haff.t0_error)},
+      {"haff_t0_tolerance", kHaffT0Tolerance},
+      {"haff_t0_within_tolerance",
+       std::isfinite(deviation) ? json(std::abs(deviation) <= kHaffT0Tolerance) : json()},
+      {"haff_t0_paper", t0_paper},
+      {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},
       {"signal_to_noise_initial", sn.ratio()},
   };
+  block.update(md_cost_summary(out));
+  add_engine_details(block, out.engine_details);
+  return block;
 }
 
 void write_md_results(const std::filesystem::path& file, const MdScene& scene,
@@ -86,7 +113,7 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   write_attribute(md, "box_width", sc.box_width);
   write_attribute(md, "area_fraction", sc.area_fraction);
   write_attribute(md, "restitution", sc.restitution);
-  write_attribute(md, "restitution_measured", out.restitution_measured);
+  write_attribute(md, "restitution_measured", out.collision_rule.restitution);
   write_attribute(md, "haff_t0_measured", out.haff.t0);
   write_attribute(md, "haff_t0_measured_error", out.haff.t0_error);
   write_attribute(md, "haff_T0_measured", out.haff.T0);
@@ -116,8 +143,15 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   write_matrix(ts, "kinetic_noise_x", stack(&md::MdSeries::kinetic_noise_x), members);
   write_matrix(ts, "kinetic_noise_y", stack(&md::MdSeries::kinetic_noise_y), members);
   write_matrix(ts, "momentum_x", stack(&md::MdSeries::momentum_x), members);
-  write_matrix(ts, "kn", stack(&md::MdSeries::kn), members);
-  write_matrix(ts, "dt", stack(&md::MdSeries::dt), members);
+  for (std::size_t i = 0; i < base.engine.size(); ++i) {  // the engine's own series
+    std::vector<double> all;
+    for (const auto& run : out.runs) {
+      auto v = run.series.engine.at(i).second;
+      v.resize(base.t.size(), std::nan(""));
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    write_matrix(ts, base.engine[i].first, all, members);
+  }
   std::vector<double> fit, chi, dilute;
   for (double t : base.t) {
     fit.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff.t0, 2));

@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
-#include "md_bridge/restitution_calibration.hpp"
 
 namespace granvv::app {
 
@@ -55,10 +55,14 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   spec.bins = static_cast<int>(c.integer("md.bins"));
   spec.kernel = c.string("md.kernel");
   spec.kernel_width = c.real("md.kernel_width");
-  spec.max_overlap = c.real("md.max_overlap");
-  spec.steps_per_contact = static_cast<int>(c.integer("md.steps_per_contact"));
-  spec.adaptive_stiffness = c.boolean("md.adaptive_stiffness");
   s.ensemble = static_cast<int>(c.integer("md.ensemble"));
+  s.engine = c.string("md.engine");
+  for (const KeySpec& key : case_schema()) {
+    if (key.section() != "md") continue;
+    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
+    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
+    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
+  }
   spec.snapshot_interval = c.real("md.snapshot_interval");
   if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
     const double t0 = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
@@ -94,7 +98,20 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       " disks; above 2e6 a single-node run here takes too long (use MPI on a "
                       "cluster, or a larger K / smaller md.box_width)");
   }
+  try {
+    (void)make_engine(s, "");
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
   return s;
+}
+
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir) {
+  md::ParticleEngineSetup setup;
+  setup.scene = scene.spec.scene;
+  setup.settings = scene.engine_settings;
+  setup.log_dir = log_dir;
+  return md::make_particle_engine(scene.engine, setup);
 }
 
 namespace {
@@ -128,22 +145,18 @@ std::vector<EnsembleSnapshot> ensemble_snapshots(const std::vector<md::MdRunResu
 
 }  // namespace
 
-MdOutcome run_md_scene(const MdScene& scene,
+MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
                        const std::function<void(int, const md::MdProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   MdOutcome out;
   const auto& sc = scene.spec.scene;
-  // The restitution the contact model really gives, measured in LAMMPS (binary collisions).
-  md::ContactSpec contact;
-  contact.restitution = sc.restitution;
-  contact.max_overlap = scene.spec.max_overlap;
-  contact.steps_per_contact = scene.spec.steps_per_contact;
-  const md::ContactModel model = md::make_contact_model(contact);
-  out.restitution_measured = md::measure_restitution(model, 1.0);
-  if (std::abs(out.restitution_measured - sc.restitution) > 1e-3) {
+  out.engine = engine.name();
+  out.collision_rule = engine.check_collision_rule();
+  if (std::abs(out.collision_rule.restitution - sc.restitution) > 1e-3) {
     std::ostringstream why;
-    why << "restitution measured in LAMMPS " << out.restitution_measured
-        << " misses md.restitution = " << sc.restitution << " by more than 1e-3; refusing the run";
+    why << "restitution " << out.collision_rule.restitution << " ("
+        << out.collision_rule.description << ") misses md.restitution = " << sc.restitution
+        << " by more than 1e-3; refusing the run";
     throw std::runtime_error(why.str());
   }
   std::vector<std::vector<double>> ts, Ts;
@@ -156,10 +169,9 @@ MdOutcome run_md_scene(const MdScene& scene,
                         (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
                            .string();
     }
-    out.runs.push_back(md::run_md(spec, [&](const md::MdProgress& p) {
+    out.runs.push_back(md::run_md(spec, engine, [&](const md::MdProgress& p) {
       if (progress) progress(m, p);
     }));
-    out.atom_steps += out.runs.back().atom_steps;
     ts.push_back(out.runs.back().series.t);
     Ts.push_back(out.runs.back().series.T);
   }
@@ -172,6 +184,8 @@ MdOutcome run_md_scene(const MdScene& scene,
   out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
   out.T = compare::ensemble_statistics(Ts);
   out.snapshots = ensemble_snapshots(out.runs);
+  out.cost = engine.cost();
+  out.engine_details = engine.details();
   out.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

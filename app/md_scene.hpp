@@ -1,9 +1,12 @@
 #pragma once
-// A case's particle part: the [md] table read into a particle scene (DESIGN.md §4), the
-// restitution check inside LAMMPS, an ensemble of seeds, and the Haff fit against kinetic
-// theory (dilute and with the Enskog factor).
+// A case's particle part: the [md] table read into a particle scene (docs/physics.md §4), the
+// particle engine it names (md_bridge/particle_engine.hpp) with its collision-rule check, an
+// ensemble of seeds, and the Haff fit against kinetic theory (dilute and with the Enskog
+// factor).
 #include <functional>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "app/case_config.hpp"
@@ -17,11 +20,18 @@ namespace granvv::app {
 struct MdScene {
   md::MdRunSpec spec;  // spec.seed is the first seed; member m uses seed + m
   int ensemble = 1;
+  std::string engine;  // md.engine
+  // Every number and boolean of [md] by key: the engine reads the ones it understands.
+  md::EngineSettings engine_settings;
 };
 
 // Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot
-// run (scene_problem, contact model, a profile too dense to place) before LAMMPS sees them.
+// run (scene_problem, settings the engine refuses, a profile too dense to place) before the
+// engine sees them.
 std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
+
+// The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir);
 
 // The coarse-grained fields of one snapshot over the ensemble (MD units): mean and standard
 // error over the members (NaN with one member), and member 0's own single-snapshot errors.
@@ -32,7 +42,7 @@ struct EnsembleSnapshot {
   std::vector<double> v_x_snapshot_error, v_y_snapshot_error, T_snapshot_error;
 };
 
-// DESIGN.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
+// docs/physics.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
 // (n0 Ly l)^{-1/2} sqrt(T0/m), against the imposed signal, the largest initial flow speed.
 struct SignalToNoise {
   double signal = 0.0, noise = 0.0;
@@ -42,18 +52,21 @@ SignalToNoise initial_signal_to_noise(const MdScene& scene);
 
 struct MdOutcome {
   std::vector<md::MdRunResult> runs;
-  double restitution_measured = 0.0;
+  std::string engine;
+  md::CollisionRuleCheck collision_rule;
   compare::HaffFit haff;
   double haff_t0_theory = 0.0, haff_t0_theory_dilute = 0.0;
-  double wall_seconds = 0.0, atom_steps = 0.0;
+  double wall_seconds = 0.0;
+  md::EngineCost cost;  // over every member
+  md::EngineDetails engine_details;
   // Ensemble statistics of the temperature series (run 0's sample times) and of the fields.
   compare::EnsembleStatistics T;
   std::vector<EnsembleSnapshot> snapshots;
 };
 
-// Throws std::runtime_error if the restitution measured in LAMMPS misses the target by more
-// than 1e-3 (the run is refused).
-MdOutcome run_md_scene(const MdScene& scene,
+// Throws std::runtime_error if the restitution the engine's collision rule really has misses
+// the target by more than 1e-3 (the run is refused).
+MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
                        const std::function<void(int member, const md::MdProgress&)>& progress);
 
 }  // namespace granvv::app

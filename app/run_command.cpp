@@ -23,7 +23,7 @@
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
-#include "md_bridge/lammps_session.hpp"
+#include "md_bridge/mpi_environment.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -51,7 +51,8 @@ double progress_fraction(const hydro::Progress& p) {
 }
 
 // The particle engine with a progress line every progress_seconds and its throughput.
-MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::logger& log) {
+MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double progress_seconds,
+                        spdlog::logger& log) {
   const auto& sc = scene.spec.scene;
   log.info(
       "md: {} disks, Lx = {:.6g}, Ly = {:.6g} sigma, phi = {:.4g}, r = {:.6g} (K = {:.4g}, "
@@ -59,7 +60,7 @@ MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::l
       sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution, sc.physics().K,
       sc.physics().q, sc.unstable_modes(), scene.ensemble);
   auto last = std::chrono::steady_clock::now();
-  const MdOutcome out = run_md_scene(scene, [&](int member, const md::MdProgress& p) {
+  const MdOutcome out = run_md_scene(scene, engine, [&](int member, const md::MdProgress& p) {
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
     last = now;
@@ -69,12 +70,12 @@ MdOutcome run_particles(const MdScene& scene, double progress_seconds, spdlog::l
              p.steps * double(sc.particles) / std::max(p.wall_seconds, 1e-12),
              p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
   });
-  log.info("md: restitution measured in LAMMPS {:.6f} (target {:.6f})", out.restitution_measured,
-           sc.restitution);
+  log.info("md: restitution {:.6f} (target {:.6f}), {}", out.collision_rule.restitution,
+           sc.restitution, out.collision_rule.description);
   log.info(
-      "md: {:.3g} s wall, {:.3g} atom-steps/s, Haff t0 = {:.5g} +- {:.2g} (kinetic theory "
+      "md: {:.3g} s wall, {:.3g} {}/s, Haff t0 = {:.5g} +- {:.2g} (kinetic theory "
       "{:.5g} with chi(phi), {:.5g} dilute)",
-      out.wall_seconds, out.atom_steps / out.wall_seconds, out.haff.t0, out.haff.t0_error,
+      out.wall_seconds, out.cost.per_second(), out.cost.work_unit, out.haff.t0, out.haff.t0_error,
       out.haff_t0_theory, out.haff_t0_theory_dilute);
   return out;
 }
@@ -161,24 +162,25 @@ int run_command(const RunOptions& options) {
     const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(),
                            config.flattened()};
     // The particle engine; the summary on disk says "failed" until it returns, because the
-    // Debian LAMMPS ends the process on any error inside a command (DESIGN.md §5).
+    // Debian LAMMPS ends the process on any error inside a command (docs/physics.md §10).
     auto run_particle_engine = [&]() {
       summary["md"] = {{"status", "failed"}};
       md_scene->spec.creator_version = GRANVV_VERSION;
-      md_scene->spec.log_file = writer ? (dir / "log.lammps").string() : "none";
+      const auto engine = make_engine(*md_scene, writer ? dir.string() : "");
       summary["md"]["error"] =
-          "the process ended inside the particle run (see log.lammps and run.log); results.h5 "
-          "holds what was finished before it and particles*.h5 the particle frames written so "
-          "far";
+          "the process ended inside the particle run (see " +
+          fs::path(engine->log_path()).filename().string() +
+          " and run.log); results.h5 holds what was finished before it and particles*.h5 the "
+          "particle frames written so far";
       const nlohmann::json status_so_far = summary["status"];
       summary["status"] = "failed";
       if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
       summary["status"] = status_so_far;
-      log->info("md: LAMMPS log in {}", md_scene->spec.log_file);
+      log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
       if (md_scene->spec.snapshot_interval > 0.0) {
         md_scene->spec.h5md_path = (dir / "particles.h5").string();
       }
-      return run_particles(*md_scene, scene.progress_seconds, *log);
+      return run_particles(*md_scene, *engine, scene.progress_seconds, *log);
     };
 
     // In a comparison the particles run first: the hydro starts from their coarse-grained
@@ -225,8 +227,8 @@ int run_command(const RunOptions& options) {
       summary["compare"] =
           compare_summary(*compare_scene, scene, outcome, *md_scene, *md, compared);
       log->info("compare: {}", compared.verdict);
-      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} atom-steps)",
-                run.wall_seconds, md->wall_seconds, md->atom_steps);
+      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})", run.wall_seconds,
+                md->wall_seconds, md->cost.work, md->cost.work_unit);
     }
   } catch (const std::exception& e) {
     log->error("run failed: {}", e.what());

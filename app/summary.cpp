@@ -1,14 +1,25 @@
 #include "app/summary.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "app/json_numbers.hpp"
+#include "hydro/linear_stability.hpp"
 
 namespace granvv::app {
 namespace {
 
 using nlohmann::json;
+
+// Paper Fig. 4a: the fitted singularity time "agrees with [tau = 1/(2 pi |a|)] within 2 %".
+constexpr double kSingularityTimeTolerance = 0.02;
+
+// |deviation| <= tolerance, or null when there is no deviation to judge.
+json within(std::optional<double> deviation, double tolerance) {
+  return deviation ? json(std::abs(*deviation) <= tolerance) : json();
+}
 
 // "10", "100", "1000", "1e6": the crossing densities as the contract spells them.
 std::string density_key(double level) {
@@ -53,6 +64,7 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["t_final"] = run.snapshots.back().state.t;
   h["unstable_modes"] = out.unstable_modes;
   h["shear_unstable_modes"] = out.shear_unstable_modes;
+  h["clustering_cutoff_mode"] = hydro::clustering_cutoff_mode(scene.physics);
 
   std::optional<double> tau;
   if (run.status == hydro::RunStatus::singularity && out.singularity) tau = out.singularity->tau;
@@ -68,8 +80,11 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["blowup_time_deviation"] =
       out.blowup_time && out.inertia_tau ? json(*out.blowup_time / *out.inertia_tau - 1.0) : json();
   h["inertia_singularity_time"] = number_or_null(out.inertia_tau);
-  h["singularity_time_deviation"] =
-      tau && out.inertia_tau ? json(*tau / *out.inertia_tau - 1.0) : json();
+  const auto tau_deviation =
+      tau && out.inertia_tau ? std::optional<double>(*tau / *out.inertia_tau - 1.0) : std::nullopt;
+  h["singularity_time_deviation"] = number_or_null(tau_deviation);
+  h["singularity_time_tolerance"] = kSingularityTimeTolerance;
+  h["singularity_time_within_tolerance"] = within(tau_deviation, kSingularityTimeTolerance);
 
   json crossings = json::object();
   for (double level : scene.control.crossing_densities) {
@@ -79,9 +94,12 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["peak_density_times"] = crossings;
 
   json snaps = json::array();
+  std::optional<double> collapse_max;
   for (const auto& s : out.snapshots) {
     if (s.label != "output") continue;
+    if (s.collapse_error) collapse_max = std::max(collapse_max.value_or(0.0), *s.collapse_error);
     const auto& d = s.diagnostics;
+    const json collapse_ok = within(s.collapse_error, scene.collapse_tolerance);
     snaps.push_back({{"t", s.t},
                      {"n_max", d.n_max},
                      {"T_min", d.T_min},
@@ -89,9 +107,13 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
                      {"energy_thermal", d.energy_thermal},
                      {"energy_kinetic", d.energy_kinetic},
                      {"energy_kinetic_y", d.energy_kinetic_y},
-                     {"collapse_error", number_or_null(s.collapse_error)}});
+                     {"collapse_error", number_or_null(s.collapse_error)},
+                     {"collapse_within_tolerance", collapse_ok}});
   }
   h["snapshots"] = snaps;
+  h["collapse_tolerance"] = scene.collapse_tolerance;
+  h["collapse_error_max"] = number_or_null(collapse_max);
+  h["collapse_within_tolerance"] = within(collapse_max, scene.collapse_tolerance);
   json missing = json::array();
   for (double t : scene.control.output_times) {
     bool found = false;

@@ -1,5 +1,5 @@
 #pragma once
-// summary.json: the contract other tools read (DESIGN.md §3). Numbers are numbers; results
+// summary.json: the contract other tools read (docs/outputs.md). Numbers are numbers; results
 // a scene does not have are null.
 #include <nlohmann/json.hpp>
 

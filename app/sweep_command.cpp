@@ -127,8 +127,11 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
          {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
          {"deviation_enskog", cooling[i].t0 / cooling[i].t0_enskog - 1.0},
          {"deviation_enskog_sigmas", (cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error},
+         {"enskog_beyond_sigmas",
+          std::abs(cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error > sigmas},
          {"paper_deviation", s.paper_deviation[i]},
-         {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]}});
+         {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]},
+         {"paper_beyond_sigmas", std::abs(s.paper_deviation_sigmas[i]) > sigmas}});
   }
   json power = nullptr;
   if (s.power) {
@@ -136,6 +139,10 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
         {"power", s.power->power},         {"power_error", s.power->power_error},
         {"prefactor", s.power->prefactor}, {"chi2_per_dof", number_or_null(s.power->chi2_per_dof)},
         {"points", s.power->points},       {"r_min", power_r_min}};
+    // Kinetic theory: zeta ~ (1 - r^2)^1 (docs/physics.md §4).
+    const double z = (s.power->power - 1.0) / s.power->power_error;
+    power["deviation_from_one_sigmas"] = number_or_null(z);
+    power["consistent_with_one"] = std::isfinite(z) ? json(std::abs(z) <= sigmas) : json();
   }
   return {{"points", rows},
           {"power_of_one_minus_r2", power},

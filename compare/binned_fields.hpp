@@ -9,7 +9,7 @@
 // energy per particle with the bin's mean flow removed, exactly as the coarse-grainer defines
 // it for particles: T_b = [sum n T + (1/2) sum n |v - v_b|^2] / M_b. The second term is the
 // flow that varies inside the bin, which particles in one bin see as heat; for a 2D gas
-// (thermal energy T per particle, DESIGN.md §4) it enters with the factor 1/2.
+// (thermal energy T per particle, docs/physics.md §1) it enters with the factor 1/2.
 #include <functional>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Homogeneous cooling measured over a range of restitution coefficients r, against kinetic
 // theory. For smooth inelastic disks the cooling rate of the temperature at T0 is
-// zeta = 2 / t0 = sqrt(pi) (1 - r^2) chi(phi) n sigma sqrt(T0/m) (DESIGN.md §4), so the measured
+// zeta = 2 / t0 = sqrt(pi) (1 - r^2) chi(phi) n sigma sqrt(T0/m) (docs/physics.md §4), so the measured
 // zeta should scale as (1 - r^2)^1. The paper's hydro keeps the small-q form 8q/K, i.e.
 // 1 - r^2 ~ 4q = 2 (1 - r), which overestimates the rate by the factor 2 / (1 + r); at finite
 // density it also lacks chi(phi) unless that is put in.

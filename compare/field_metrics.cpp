@@ -39,6 +39,10 @@ FieldDifference field_difference(const std::vector<double>& hydro, const std::ve
   return f;
 }
 
+bool field_agrees(const FieldDifference& d, double required_fraction) {
+  return !std::isnan(d.fraction_within) && d.fraction_within >= required_fraction;
+}
+
 AgreementWindow agreement_window(const std::vector<double>& times,
                                  const std::vector<FieldTrack>& tracks, double required_fraction) {
   for (const auto& track : tracks) {
@@ -57,7 +61,7 @@ AgreementWindow agreement_window(const std::vector<double>& times,
     };
     const FieldTrack* worst = nullptr;
     for (const auto& track : tracks) {
-      if (rank(track) >= required_fraction) continue;
+      if (field_agrees(track.at[k], required_fraction)) continue;
       if (!worst || rank(track) < rank(*worst)) worst = &track;
     }
     if (worst) {

@@ -42,6 +42,10 @@ struct AgreementWindow {
   bool throughout = false;
 };
 
+// Whether a field agrees at one time: at least `required_fraction` of its bins lie within the
+// sigmas; a difference without usable bins (NaN fraction) does not agree.
+bool field_agrees(const FieldDifference& d, double required_fraction);
+
 // Throws std::invalid_argument if a track's length differs from times.size().
 AgreementWindow agreement_window(const std::vector<double>& times,
                                  const std::vector<FieldTrack>& tracks, double required_fraction);

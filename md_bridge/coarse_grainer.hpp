@@ -4,13 +4,13 @@
 // T), after MercuryCG (Weinhart, Thornton, Luding & Bokhove, Granular Matter 14, 289 (2012);
 // Tunuguntla, Thornton & Weinhart, Comp. Part. Mech. 3, 343 (2016)).
 //
-// Two stages, so that it runs in place under MPI (DESIGN.md §8): every rank sums raw kernel
+// Two stages, so that it runs in place under MPI (docs/physics.md §7): every rank sums raw kernel
 // moments of its own particles into a Moments (accumulate), the ranks add them
 // (md_bridge/moment_reduction.hpp: allreduce), and fields() turns the summed moments into
 // n, v, T with their standard errors. Only sums cross ranks, never particles.
 //
 // Units are those of the particles (MD: sigma = m = T0 = 1); masses may differ per particle.
-// Conventions (2D, DESIGN.md §4 and §6):
+// Conventions (2D, docs/physics.md §4 and §6):
 //   n(x)  number density, particles per unit area;
 //   v(x)  mass-weighted mean velocity, both components;
 //   T(x)  granular temperature = thermal energy per particle, (1/2) m <|c - v(x)|^2>, with the
@@ -88,10 +88,9 @@ struct FieldProfile {
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because
 //   every particle's weights add up to one.
 //   kinetic_macro_x/y = sum_bins (1/2) M_b v_b^2 per component, with M_b the bin's mass
-//   (the integral of (1/2) m n v^2 dx Ly); the y part is the transverse (shear) flow, DESIGN.md
-//   §6.
-//   thermal_biased = sum_bins (1/2) sum_p w m |c - v_b|^2 = sum_bins T_b^biased count_b.
-//   Identity (exact algebra for every kernel, round-off in practice):
+//   (the integral of (1/2) m n v^2 dx Ly); the y part is the transverse (shear) flow,
+//   docs/physics.md §6. thermal_biased = sum_bins (1/2) sum_p w m |c - v_b|^2 = sum_bins T_b^biased
+//   count_b. Identity (exact algebra for every kernel, round-off in practice):
 //     thermal_biased + kinetic_macro_x + kinetic_macro_y = kinetic_total.
 //   thermal = sum_bins T_b count_b with the unbiased T. It exceeds thermal_biased by exactly
 //   macro_noise_x + macro_noise_y, where macro_noise = sum_bins (1/2) T_b sum w^2 m / sum w m
@@ -124,7 +123,7 @@ class CoarseGrainer {
   // Adds the moments of n particles to `m` (which must have grid().bins bins). LAMMPS layout:
   // particle i has position x[stride i + 0..1] and velocity v[stride i + 0..1]; mass[i] is
   // its mass (LAMMPS rmass), or mass == nullptr for unit mass. Positions outside the box (atoms
-  // between neighbour-list rebuilds, DESIGN.md §5) are wrapped periodically; y is not read.
+  // between neighbour-list rebuilds, docs/physics.md §10) are wrapped periodically; y is not read.
   // Throws std::invalid_argument on n < 0, stride < 2, a wrong-sized m, a non-finite position.
   void accumulate(Moments& m, const double* x, const double* v, const double* mass, int n,
                   int stride = 3) const;

@@ -1,6 +1,6 @@
 #pragma once
 // Contact law of the particle engine: the linear spring-dashpot of LAMMPS `pair_style
-// gran/hooke` with friction switched off (DESIGN.md §4), mapped from a target restitution
+// gran/hooke` with friction switched off (docs/physics.md §5), mapped from a target restitution
 // coefficient r. Pure functions, no LAMMPS: each is unit-tested against its formula.
 //
 // Normal force between two disks in contact (overlap xi = sigma - |r_ij| > 0, normal relative

@@ -25,16 +25,16 @@
 //
 // Every time-dependent dataset is chunked and extendible along its first (frame) axis; strings
 // are fixed-length, null-terminated ASCII, as H5MD requires. Units are those of the MD run
-// (sigma = m = T0 = 1, DESIGN.md §4); step is the LAMMPS time step count and time the physical
-// time. Steps must increase strictly and times must not decrease within each element (H5MD
+// (sigma = m = T0 = 1, docs/physics.md §4); step is the engine's step count and time the
+// physical time. Steps must increase strictly and times must not decrease within each element (H5MD
 // requires monotonic step/time so that readers may bisect them).
 //
-// Positions are written modulo the box into [-Lx/2, Lx/2) x [-Ly/2, Ly/2), the LAMMPS box of
-// md_run (`region box block -Lx/2 Lx/2 -Ly/2 Ly/2`); no image element is written.
+// Positions are written modulo the box into [-Lx/2, Lx/2) x [-Ly/2, Ly/2), the box of
+// md_run (LAMMPS: `region box block -Lx/2 Lx/2 -Ly/2 Ly/2`); no image element is written.
 //
 // Crash safety: the file uses the HDF5 1.8 object format (superblock version 2, no
 // file-consistency flags), and every append ends with a flush. A process that dies between two
-// appends (an error inside LAMMPS ends the whole process, DESIGN.md §5) leaves a valid file
+// appends (an error inside LAMMPS ends the whole process, docs/physics.md §10) leaves a valid file
 // holding every frame appended so far. The writer takes no HDF5 file lock, so other processes
 // may open the file read-only while the run goes on (they see the state of the last flush;
 // a read that overlaps an append may fail and is to be retried).

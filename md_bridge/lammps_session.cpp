@@ -14,31 +14,6 @@
 namespace granvv::md {
 
 // ---------------------------------------------------------------------------------------------
-// MpiEnvironment
-
-MpiEnvironment::MpiEnvironment() {
-  int initialised = 0;
-  MPI_Initialized(&initialised);
-  if (!initialised) {
-    MPI_Init(nullptr, nullptr);
-    initialised_here_ = true;
-  }
-}
-
-MpiEnvironment::~MpiEnvironment() {
-  if (!initialised_here_) return;
-  int finalised = 0;
-  MPI_Finalized(&finalised);
-  if (!finalised) MPI_Finalize();
-}
-
-void MpiEnvironment::ensure() {
-  // Constructed on first use, destroyed at exit after every object constructed before it
-  // returned, so a LammpsSession (which calls this in its constructor) closes first.
-  static MpiEnvironment guard;
-}
-
-// ---------------------------------------------------------------------------------------------
 // LammpsSession
 
 namespace {
@@ -221,7 +196,7 @@ LammpsTag LammpsSession::create_atoms(const AtomBatch& atoms) {
     throw std::runtime_error("lammps_create_atoms created " + std::to_string(after - before) +
                              " of " + std::to_string(n) + " atoms");
 
-  // The explicit radius and mass (the 2D mass trap, DESIGN.md §5).
+  // The explicit radius and mass (the 2D mass trap, docs/physics.md §10).
   const int nl = nlocal();
   const LammpsTag* tags = id();
   double* rad = has_radius ? radius() : nullptr;

@@ -1,9 +1,9 @@
 #pragma once
 // One LAMMPS instance, opened through the C library interface (lammps_open with an MPI
-// communicator, DESIGN.md §7) and closed by the destructor.
+// communicator, docs/physics.md §10) and closed by the destructor.
 //
 // The Debian LAMMPS is built without C++ exceptions: an error inside lammps_command ends the
-// whole process (DESIGN.md §5). So this class does not try to catch LAMMPS errors; it checks
+// whole process (docs/physics.md §10). So this class does not try to catch LAMMPS errors; it checks
 // what it can before a call (box defined, atoms inside it, types in range, finite numbers,
 // writable log file) and callers build commands only from validated numbers (see
 // contact_model.hpp: lammps_number). Every command sent is recorded in history() and passed
@@ -15,26 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "md_bridge/mpi_environment.hpp"
+
 namespace granvv::md {
-
-// Owns MPI for programs that do not: initialises MPI if nobody has, and finalises it at
-// destruction only if it was this guard that initialised it (and MPI is not finalised yet).
-class MpiEnvironment {
- public:
-  MpiEnvironment();
-  ~MpiEnvironment();
-  MpiEnvironment(const MpiEnvironment&) = delete;
-  MpiEnvironment& operator=(const MpiEnvironment&) = delete;
-
-  bool initialised_here() const { return initialised_here_; }
-
-  // A process-wide guard (function-local static): MPI is initialised on first use and,
-  // if it was initialised here, finalised at program exit. LammpsSession calls this.
-  static void ensure();
-
- private:
-  bool initialised_here_ = false;
-};
 
 #if defined(LAMMPS_BIGBIG)
 using LammpsTag = std::int64_t;

@@ -1,10 +1,8 @@
 #pragma once
-// One particle run: 2D inelastic disks (LAMMPS gran/hooke, friction off) in a periodic box,
-// started from fields, advanced in segments; between segments the particles are
-// coarse-grained in place (moments reduced over the ranks), whole-box energies recorded, and
-// the contact stiffness lowered as the gas cools (hard-disk limit at fixed restitution).
-#include <mpi.h>
-
+// One particle run, engine-neutral: 2D inelastic disks in a periodic box, sampled from
+// fields, moved by a particle engine (particle_engine.hpp) in segments; between segments the
+// particles are coarse-grained in place (moments reduced over the ranks), whole-box energies
+// recorded and, at the snapshot interval, particle frames written in H5MD layout.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -12,7 +10,7 @@
 
 #include "hydro/initial_conditions.hpp"
 #include "md_bridge/coarse_grainer.hpp"
-#include "md_bridge/contact_model.hpp"
+#include "md_bridge/particle_engine.hpp"
 #include "md_bridge/particle_scene.hpp"
 
 namespace granvv::md {
@@ -27,11 +25,6 @@ struct MdRunSpec {
   int bins = 100;
   std::string kernel = "bin";
   double kernel_width = 0.0;  // sigma
-  double max_overlap = 0.01;  // sigma, at the fastest relative speed present
-  int steps_per_contact = 30;
-  bool adaptive_stiffness = true;
-  double adapt_below = 0.5;  // re-stiffen when the fastest speed fell below this fraction
-  std::string log_file = "none";
   // H5MD particle snapshots (md_bridge/h5md_writer.hpp): every snapshot_interval of MD time
   // (0 = none), written by rank 0 to h5md_path; the whole-box observables at every sample.
   double snapshot_interval = 0.0;
@@ -43,10 +36,12 @@ struct MdRunSpec {
 // mean flow (both components) removed in md.bins bins, unbiased.
 struct MdSeries {
   std::vector<double> t, T, energy_thermal, energy_kinetic_x, energy_kinetic_y, energy_total,
-      momentum_x, momentum_y, kn, dt;
+      momentum_x, momentum_y;
   // Expected flow energy that the sampling noise of the bin means puts into energy_kinetic_x/y
   // (BoxEnergies::macro_noise_x/y): subtract it to see the macroscopic flow itself.
   std::vector<double> kinetic_noise_x, kinetic_noise_y;
+  // The engine's own numbers at every sample (ParticleEngine::series_values), in its order.
+  std::vector<std::pair<std::string, std::vector<double>>> engine;
 };
 
 struct MdSnapshot {
@@ -63,20 +58,15 @@ struct MdRunResult {
   std::string status = "failed";  // "ok" or "failed"
   std::string stop_reason;
   double wall_seconds = 0.0;
-  long long steps = 0;
-  double atom_steps = 0.0;
-  int stiffness_changes = 0;
-  ContactModel initial_contact, final_contact;
+  long long steps = 0;  // the engine's steps
   MdSeries series;
   std::vector<MdSnapshot> snapshots;
 };
 
-// The fastest relative normal speed two particles of the sample can have, 2 max |v| (over
-// all ranks' local atoms): the speed the contact must resolve.
-double fastest_relative_speed(const double* v, int n, MPI_Comm comm);
-
-// Validates the spec (scene_problem, contact) and throws std::invalid_argument before
-// anything reaches LAMMPS. Deterministic for a seed (and a number of ranks).
-MdRunResult run_md(const MdRunSpec& spec, const std::function<void(const MdProgress&)>& progress);
+// One run of `engine` (which starts it anew). Validates the spec (scene_problem, times) and
+// throws std::invalid_argument before the engine sees it. Deterministic for a seed (and a
+// number of ranks) if the engine is.
+MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
+                   const std::function<void(const MdProgress&)>& progress);
 
 }  // namespace granvv::md

@@ -1,5 +1,5 @@
 #pragma once
-// In-place reduction of coarse-graining moments across MPI ranks (DESIGN.md §8): each rank
+// In-place reduction of coarse-graining moments across MPI ranks (docs/physics.md §7): each rank
 // sums the kernel moments of its own particles, and one MPI_Allreduce adds them, so that a run
 // of millions of disks never gathers particles. Only sums cross ranks, so the fields of the
 // reduced moments are those of the whole box.

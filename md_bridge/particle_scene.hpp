@@ -1,6 +1,6 @@
 #pragma once
 // The mapping between the paper's scaled description of a scene (K, q) and the particles
-// that realise it (DESIGN.md §4), with sigma = m = T0 = 1: n0 sigma^2 = 4 phi / pi,
+// that realise it (docs/physics.md §4), with sigma = m = T0 = 1: n0 sigma^2 = 4 phi / pi,
 // Lx = 2 / (sqrt(pi) sigma n0 K), N = n0 Lx Ly, r = 1 - 2q. Every unit conversion between
 // MD units (sigma, m, T0) and the hydro's scaled units lives here.
 #include <string>
@@ -42,7 +42,7 @@ ParticleScene scene_from_particles(long long particles, double area_fraction, do
 double enskog_chi(double area_fraction);
 
 // Haff time t0 (MD units) of a homogeneous gas of smooth inelastic disks: the cooling rate
-// zeta = sqrt(pi) (1 - r^2) chi n sigma sqrt(T/m) (DESIGN.md §4) gives T = T0 (1 + t/t0)^-2
+// zeta = sqrt(pi) (1 - r^2) chi n sigma sqrt(T/m) (docs/physics.md §4) gives T = T0 (1 + t/t0)^-2
 // with t0 = 2 / zeta(T0). chi = 1 is the dilute limit the paper's 8q/K term uses
 // (with 1 - r^2 ~ 4q).
 double haff_time_md(const ParticleScene& s, double chi);

@@ -1,6 +1,6 @@
 #pragma once
-// Verifies a contact model inside LAMMPS (DESIGN.md §4: "Verify r by a binary collision
-// inside LAMMPS"): head-on collisions of two disks, r = -(v_n after)/(v_n before).
+// Verifies a contact model inside LAMMPS by binary collisions (docs/physics.md §5): head-on
+// collisions of two disks, r = -(v_n after)/(v_n before).
 //
 // A time-discrete contact does not have one restitution: the collision starts at some phase s
 // in [0, 1) within a time step, and r(s) is piecewise linear in s with one jump where the

@@ -1,4 +1,4 @@
-// The command-line contract (DESIGN.md §3), driven through the real build/granvv binary:
+// The command-line contract (docs/outputs.md, docs/architecture.md), driven through the real build/granvv binary:
 // bad input, --dry-run, `granvv list`, a small real run and its output folder, the report, and
 // the embedded default scene. Runs use tiny meshes so the whole file takes a few seconds.
 #include <gtest/gtest.h>
@@ -611,6 +611,40 @@ TEST_F(CliSmallRun, SummaryJsonFollowsTheContract) {
               snap.value("energy_thermal", NAN) + snap.value("energy_kinetic", NAN) +
                   snap.value("energy_kinetic_y", 0.0),
               1e-12 * std::abs(snap.value("energy", 1.0)));
+}
+
+// The derived numbers and verdicts the report reads instead of recomputing them.
+TEST_F(CliSmallRun, SummaryJsonCarriesTheReportsThresholdsAndVerdicts) {
+  ASSERT_EQ(result().exit_code, 0) << describe(result());
+  json h = summary()["hydro"];
+  ASSERT_TRUE(h.is_object());
+  // Paper: pi k K < sqrt(q), K = 4e-4, q = 0.01: k_c = 0.1 / (pi 4e-4) = 79.577...
+  EXPECT_NEAR(h["clustering_cutoff_mode"].get<double>(), 0.1 / (std::acos(-1.0) * 4e-4), 1e-12);
+  EXPECT_EQ(h["collapse_tolerance"].get<double>(), 0.015) << "analysis.collapse_tolerance default";
+  EXPECT_EQ(h["singularity_time_tolerance"].get<double>(), 0.02) << "paper Fig. 4a: within 2 %";
+  const json& snap = h["snapshots"].at(0);
+  ASSERT_TRUE(snap["collapse_error"].is_number()) << snap.dump();
+  const double error = snap["collapse_error"];
+  EXPECT_EQ(h["collapse_error_max"].get<double>(), error) << "one snapshot";
+  EXPECT_EQ(snap["collapse_within_tolerance"], error <= 0.015);
+  EXPECT_EQ(h["collapse_within_tolerance"], error <= 0.015);
+  if (h["singularity_time_deviation"].is_null()) {
+    EXPECT_TRUE(h["singularity_time_within_tolerance"].is_null()) << "nothing to judge";
+  }
+}
+
+TEST(CliCollapseTolerance, TheCaseToleranceDecidesTheCollapseVerdict) {
+  ScratchFolder scratch("collapse-tolerance");
+  const fs::path out = scratch.path / "run";
+  // A tolerance below any discrete collapse error: the same run now fails the collapse.
+  const CliStreams r = run_cli_streams("run single_mode --quiet --no-report --out " + q(out) + " " +
+                                       kSmall + " --set analysis.collapse_tolerance=1e-12");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  json s = json::parse(read_text(out / "summary.json"), nullptr, false);
+  ASSERT_TRUE(s["hydro"].is_object()) << s.dump(2);
+  EXPECT_EQ(s["hydro"]["collapse_tolerance"].get<double>(), 1e-12);
+  EXPECT_EQ(s["hydro"]["collapse_within_tolerance"], false);
+  EXPECT_EQ(s["hydro"]["snapshots"].at(0)["collapse_within_tolerance"], false);
 }
 
 TEST_F(CliSmallRun, StderrHasProgressStopReasonAndThroughput) {

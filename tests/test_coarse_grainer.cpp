@@ -272,7 +272,7 @@ TEST(CoarseGrainer, DriftingMaxwellianGivesItsFlowAndTemperature) {
 }
 
 // Known answer 2b. A sinusoidal flow v_x = 0.2 sin(kx), v_y = 0.15 cos(kx) (the shear mode,
-// DESIGN.md §6) on top of the drift: the local mean is removed, so T stays 0.7, not
+// docs/physics.md §6) on top of the drift: the local mean is removed, so T stays 0.7, not
 // 0.7 + (0.2^2 + 0.15^2)/4 = 0.7156 as with the global mean only (10 standard errors of the
 // whole sample away). What a kernel of finite width cannot resolve remains: it smooths the
 // flow by F(k) = <cos(k r)> and keeps the flow's variance over its width as heat, (m/2) Var_w
@@ -582,7 +582,7 @@ TEST(CoarseGrainer, EnergySplitAndMomentum) {
 }
 
 // Known answer 6. Atoms a little outside the box (LAMMPS between neighbour-list rebuilds,
-// DESIGN.md §5), or whole periods away, count in the bin of their periodic image: the moments
+// docs/physics.md §10), or whole periods away, count in the bin of their periodic image: the moments
 // equal those of the wrapped sample (plain bins exactly; smooth kernels to round-off, 1e-12,
 // since x - x_lo differs in its last bits). The edges: x_lo + Lx is x_lo (bin 0), a hair
 // below x_lo is in the last bin, a hair above x_lo + Lx in the first.

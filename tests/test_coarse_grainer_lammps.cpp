@@ -1,7 +1,7 @@
 // Known answer on a real LAMMPS state: our coarse-grainer against LAMMPS's own
 // `compute chunk/atom bin/1d` + `compute temp/chunk ... com yes` + `compute vcm/chunk` on the
 // same atoms. LAMMPS divides the chunk's fluctuation energy by 2 N_b degrees of freedom (not
-// 2 N_b - 2, DESIGN.md §5), so T_lammps = T_ours (N_b - 1) / N_b exactly.
+// 2 N_b - 2, docs/physics.md §10), so T_lammps = T_ours (N_b - 1) / N_b exactly.
 #include <gtest/gtest.h>
 #include <lammps/library.h>
 

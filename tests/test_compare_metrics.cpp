@@ -28,6 +28,7 @@ using granvv::compare::bin_lagrangian_state;
 using granvv::compare::BinnedFields;
 using granvv::compare::ensemble_statistics;
 using granvv::compare::EnsembleStatistics;
+using granvv::compare::field_agrees;
 using granvv::compare::field_difference;
 using granvv::compare::FieldDifference;
 using granvv::compare::FieldTrack;
@@ -251,6 +252,16 @@ FieldTrack track(const std::string& name, const std::vector<double>& fractions) 
     t.at.push_back(d);
   }
   return t;
+}
+
+TEST(FieldAgrees, AtLeastTheRequiredFractionAndNeverWithoutBins) {
+  FieldDifference d;
+  d.fraction_within = 0.95;
+  EXPECT_TRUE(field_agrees(d, 0.95)) << "exactly the required fraction agrees";
+  d.fraction_within = 0.9499;
+  EXPECT_FALSE(field_agrees(d, 0.95));
+  d.fraction_within = kNaN;
+  EXPECT_FALSE(field_agrees(d, 0.0)) << "a field without usable bins cannot agree";
 }
 
 TEST(AgreementWindow, AllFieldsAgreeThroughout) {

@@ -1,4 +1,4 @@
-// The contact law (md_bridge/contact_model.hpp) against its formulas (DESIGN.md §4), against
+// The contact law (md_bridge/contact_model.hpp) against its formulas (docs/physics.md §5), against
 // an independent integration of the continuum spring-dashpot, and against a step-by-step
 // emulation of LAMMPS' velocity Verlet for the discrete correction. No LAMMPS here.
 #include <gtest/gtest.h>

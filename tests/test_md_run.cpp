@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <variant>
 
+#include "md_bridge/lammps_engine.hpp"
 #include "md_bridge/md_run.hpp"
 #include "support/cli_runner.hpp"
 
@@ -24,8 +27,19 @@ MdRunSpec small_cooling_gas(double t_end) {
   return spec;
 }
 
+LammpsEngineOptions engine_options(const MdRunSpec& spec) {
+  LammpsEngineOptions o;
+  o.restitution = spec.scene.restitution;
+  o.box_length = spec.scene.box_length;
+  o.box_width = spec.scene.box_width;
+  o.particles = spec.scene.particles;
+  return o;
+}
+
 TEST(MdRun, SmallCoolingGasConservesMomentumAndParticlesAndCools) {
-  const MdRunResult r = run_md(small_cooling_gas(8.0), nullptr);
+  const MdRunSpec spec = small_cooling_gas(8.0);
+  LammpsEngine engine(engine_options(spec));
+  const MdRunResult r = run_md(spec, engine, nullptr);
   ASSERT_EQ(r.status, "ok");
   const auto& s = r.series;
   ASSERT_EQ(s.t.size(), 11u);
@@ -51,22 +65,44 @@ TEST(MdRun, SmallCoolingGasConservesMomentumAndParticlesAndCools) {
     EXPECT_NEAR(total, 600.0, 1e-9);
   }
   EXPECT_EQ(r.snapshots.front().t, 0.0);
-  EXPECT_NEAR(r.snapshots.back().t, 8.0, r.final_contact.dt);
+  EXPECT_NEAR(r.snapshots.back().t, 8.0, engine.contact().dt);
+  // The engine's own series: kn and dt at every sample.
+  ASSERT_EQ(r.series.engine.size(), 2u);
+  EXPECT_EQ(r.series.engine[0].first, "kn");
+  EXPECT_EQ(r.series.engine[1].first, "dt");
+  EXPECT_EQ(r.series.engine[1].second.size(), s.t.size());
+  EXPECT_EQ(r.series.engine[1].second.back(), engine.contact().dt);
+  // Cost: particles x time steps.
+  const EngineCost cost = engine.cost();
+  EXPECT_EQ(cost.work_unit, "atom_steps");
+  EXPECT_EQ(cost.work, 600.0 * double(r.steps));
+  EXPECT_GT(cost.wall_seconds, 0.0);
 }
 
 TEST(MdRun, AdaptiveStiffnessSoftensAtFixedRestitution) {
   // r = 0.5 cools fast (t0 = 22): by t = 15 T ~ 0.35, the fastest pair ~0.6 of its start.
   MdRunSpec spec = small_cooling_gas(15.0);
   spec.scene.restitution = 0.5;
-  spec.adapt_below = 0.7;
-  const MdRunResult r = run_md(spec, nullptr);
+  LammpsEngineOptions options = engine_options(spec);
+  options.adapt_below = 0.7;
+  LammpsEngine engine(options);
+  const MdRunResult r = run_md(spec, engine, nullptr);
   ASSERT_EQ(r.status, "ok");
-  EXPECT_GT(r.stiffness_changes, 0);
-  EXPECT_LT(r.final_contact.kn, r.initial_contact.kn);
-  EXPECT_GT(r.final_contact.dt, r.initial_contact.dt);
+  EXPECT_GT(engine.stiffness_changes(), 0);
+  // The details name the first and last contact of the run.
+  std::map<std::string, double> d;
+  for (const auto& detail : engine.details()) {
+    if (const double* v = std::get_if<double>(&detail.value)) d[detail.key] = *v;
+    if (const long long* v = std::get_if<long long>(&detail.value)) d[detail.key] = double(*v);
+  }
+  EXPECT_EQ(d.at("stiffness_changes"), engine.stiffness_changes());
+  EXPECT_LT(d.at("contact_final.kn"), d.at("contact_initial.kn"));
+  EXPECT_GT(d.at("contact_final.dt"), d.at("contact_initial.dt"));
+  EXPECT_EQ(d.at("contact_final.kn"), engine.contact().kn);
+  EXPECT_EQ(d.at("contact_initial.kn"), r.series.engine[0].second.front());
   // kn ~ u^2, dt ~ 1/sqrt(kn), gamma_n ~ sqrt(kn): the discrete contact is the same map.
-  EXPECT_NEAR(r.final_contact.gamma_n * r.final_contact.dt,
-              r.initial_contact.gamma_n * r.initial_contact.dt, 1e-9);
+  EXPECT_NEAR(d.at("contact_final.gamma_n") * d.at("contact_final.dt"),
+              d.at("contact_initial.gamma_n") * d.at("contact_initial.dt"), 1e-9);
   EXPECT_LT(std::abs(r.series.momentum_x.back()), 1e-9);
 }
 
@@ -77,6 +113,7 @@ TEST(MdCli, ImpossibleParticleScenesAreRefusedBeforeLammps) {
       {"--set md.restitution=1.2", "md.restitution = 1.2"},
       {"--set md.kernel=gaussian", "md.kernel_width"},
       {"--set md.steps_per_contact=3", "md.steps_per_contact = 3"},
+      {"--set md.engine=hard_disks", "md.engine = \"hard_disks\""},
       {"--set md.area_fraction=0.45 --set initial.type=single_mode --set "
        "initial.velocity_amplitude=0 --set initial.type=random_modes --set "
        "initial.random_modes=2 --set initial.random_amplitude=0.5",

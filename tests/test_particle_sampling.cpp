@@ -1,4 +1,4 @@
-// Parameter mapping (DESIGN.md §4) and particles sampled from fields: no overlaps, the
+// Parameter mapping (docs/physics.md §4) and particles sampled from fields: no overlaps, the
 // density profile followed, Maxwellian velocities about the local mean, exact total momentum.
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ TEST(ParticleScene, PaperTermsAndParticleTermsAreInverse) {
 TEST(ParticleScene, TimeScalesAndUnits) {
   const ParticleScene s = scene_from_particles(10000, 0.05, 40.0, 0.9);
   // Paper's Haff time K/(4q) in scaled units equals the dilute kinetic theory with
-  // 1 - r^2 replaced by 4q (DESIGN.md §4): t0 = 2 / (sqrt(pi) 4q n0) MD units.
+  // 1 - r^2 replaced by 4q (docs/physics.md §4): t0 = 2 / (sqrt(pi) 4q n0) MD units.
   const auto p = s.physics();
   const double paper_t0_md = s.md_time(p.K / (4 * p.q));
   EXPECT_NEAR(paper_t0_md, 2.0 / (std::sqrt(M_PI) * 4 * p.q * s.number_density()), 1e-9);

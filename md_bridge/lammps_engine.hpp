@@ -1,0 +1,93 @@
+#pragma once
+// The LAMMPS particle engine (docs/physics.md §5, §10): smooth inelastic disks with the
+// gran/hooke contact (friction off) of contact_model.hpp, integrated by velocity Verlet in a
+// periodic box (disk_gas.hpp). The contact is made for the fastest relative speed of the
+// sample and softened at fixed restitution as the gas cools (hard-disk limit); the
+// restitution it really gives is measured in LAMMPS by head-on collisions
+// (restitution_calibration.hpp). Every contact model, the calibrated one included, comes from
+// one validated ContactSpec (contact_for_speed).
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "md_bridge/contact_model.hpp"
+#include "md_bridge/lammps_session.hpp"
+#include "md_bridge/particle_engine.hpp"
+
+namespace granvv::md {
+
+struct LammpsEngineOptions {
+  double restitution = 0.9;  // target r, the scene's
+  double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
+  double box_width = 0.0;
+  long long particles = 0;         // N, for the cost in atom-steps
+  double max_overlap = 0.01;       // sigma, at the fastest relative speed present (md.max_overlap)
+  int steps_per_contact = 30;      // md.steps_per_contact
+  bool adaptive_stiffness = true;  // md.adaptive_stiffness
+  double adapt_below = 0.5;        // re-stiffen when the fastest speed fell below this fraction
+  std::string log_file = "none";   // LAMMPS -log of the runs (not of the calibration)
+  MPI_Comm comm = MPI_COMM_WORLD;
+};
+
+// The fastest relative normal speed two particles can have, 2 max |v| over the local atoms
+// of every rank of comm (v: xyz triplets): the speed the contact must resolve.
+double fastest_relative_speed(const double* v, int n, MPI_Comm comm);
+
+class LammpsEngine final : public ParticleEngine {
+ public:
+  // Throws std::invalid_argument (naming the md.* key) if no valid contact can be made.
+  explicit LammpsEngine(LammpsEngineOptions options);
+  // From the registry: the scene and the case keys md.max_overlap, md.steps_per_contact and
+  // md.adaptive_stiffness (std::invalid_argument if one is missing); the log is
+  // log_dir/log.lammps.
+  static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
+
+  std::string name() const override { return "lammps"; }
+  std::string log_path() const override { return options_.log_file; }
+
+  // The phase-averaged restitution of the contact made for relative speed
+  // kCalibrationSpeed, measured at approach speed 1 (restitution_calibration.hpp). The
+  // discrete contact map depends only on gamma_n dt and omega0 dt, the same for every kn at
+  // fixed steps per contact, so this is the restitution of every contact the runs use.
+  CollisionRuleCheck check_collision_rule() override;
+
+  void set_up(const ParticleSample& sample) override;
+  MPI_Comm comm() const override { return options_.comm; }
+  double time_resolution() const override { return contact_.dt; }
+  double advance_to(double t) override;
+  void between_segments() override;
+  long long steps() const override { return steps_; }
+  LocalParticles local_particles() override;
+  ParticleFrame gather_frame() override;
+  // kn and dt of the contact in use.
+  EngineValues series_values() const override;
+  EngineCost cost() const override;
+  // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of
+  // the first run).
+  EngineDetails details() const override;
+
+  // The validated contact model for relative normal speeds up to `relative_speed`.
+  ContactModel contact_for_speed(double relative_speed) const;
+  const ContactModel& contact() const { return contact_; }
+  int stiffness_changes() const { return changes_; }  // in the current run
+
+  static constexpr double kCalibrationSpeed = 10.0;
+
+ private:
+  LammpsEngineOptions options_;
+  std::chrono::steady_clock::time_point made_;
+  std::unique_ptr<LammpsSession> lmp_;
+  ContactModel contact_;
+  double speed_ = 0.0;  // relative speed the contact was made for
+  double t_ = 0.0;
+  long long steps_ = 0;
+  int changes_ = 0;
+  bool pre_ = true;  // the next run must set LAMMPS up again (new atoms, pair or step)
+  int runs_ = 0;
+  // Over every run: the work and the changes; of the first run: its contacts.
+  double atom_steps_ = 0.0;
+  int all_changes_ = 0;
+  ContactModel first_initial_, first_final_;
+};
+
+}  // namespace granvv::md

@@ -1,0 +1,28 @@
+#pragma once
+// MPI for programs that do not own it: the particle engines are collective over
+// MPI_COMM_WORLD, while `granvv run` of a hydro-only scene needs no MPI at all.
+#include <mpi.h>
+
+namespace granvv::md {
+
+// Initialises MPI if nobody has, and finalises it at destruction only if it was this guard
+// that initialised it (and MPI is not finalised yet).
+class MpiEnvironment {
+ public:
+  MpiEnvironment();
+  ~MpiEnvironment();
+  MpiEnvironment(const MpiEnvironment&) = delete;
+  MpiEnvironment& operator=(const MpiEnvironment&) = delete;
+
+  bool initialised_here() const { return initialised_here_; }
+
+  // A process-wide guard (function-local static): MPI is initialised on first use and,
+  // if it was initialised here, finalised at program exit. Engines call this before they
+  // open anything collective.
+  static void ensure();
+
+ private:
+  bool initialised_here_ = false;
+};
+
+}  // namespace granvv::md

@@ -1,0 +1,112 @@
+#pragma once
+// The particle-engine seam (docs/architecture.md): what the engine-neutral particle run
+// (md_run.hpp) needs from an engine that moves the disks of a particle scene. The run samples
+// the particles, coarse-grains them, writes the H5MD frames and keeps the time series; the
+// engine owns the dynamics and its collision rule. LAMMPS (lammps_engine.hpp) is the first
+// implementation; engines are made by name (particle_engine_registry.hpp), so app/ never
+// names one.
+#include <mpi.h>
+
+#include <map>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "md_bridge/particle_sampler.hpp"
+#include "md_bridge/particle_scene.hpp"
+
+namespace granvv::md {
+
+// The case's [md] settings by key ("md.max_overlap" -> 0.01; booleans as 1 or 0). Each
+// engine reads the keys it understands and ignores the others.
+using EngineSettings = std::map<std::string, double>;
+
+struct ParticleEngineSetup {
+  ParticleScene scene;
+  EngineSettings settings;
+  std::string log_dir;             // folder for the engine's own log ("" = no log)
+  MPI_Comm comm = MPI_COMM_WORLD;  // collective over these ranks
+};
+
+// The result of calibrating or verifying the collision rule before any run.
+struct CollisionRuleCheck {
+  double restitution = 0.0;  // normal restitution the engine's collisions really have
+  std::string description;   // how it was obtained, one line
+};
+
+// One rank's particles as the engine holds them: xyz triplets (z = 0 in 2D) and per-particle
+// masses, valid until the engine next moves them.
+struct LocalParticles {
+  const double* x = nullptr;
+  const double* v = nullptr;
+  const double* mass = nullptr;
+  int count = 0;
+};
+
+// Every particle ordered by its ID, xyz triplets, on every rank.
+struct ParticleFrame {
+  std::vector<double> x, v;
+};
+
+// Wall seconds since the engine was made (the whole particle part: collision-rule check,
+// every run, the coarse-graining between segments) and the engine's own unit of work
+// (LAMMPS: "atom_steps", particles x time steps) summed over every run so far.
+struct EngineCost {
+  double wall_seconds = 0.0;
+  double work = 0.0;
+  std::string work_unit;
+  double per_second() const { return work / wall_seconds; }
+};
+
+// An engine-specific result for the summary, by a dotted key inside its `md` block
+// ("contact_initial.kn"); the writer prints it without knowing what it means.
+struct EngineDetail {
+  std::string key;
+  std::variant<double, long long, std::string> value;
+};
+using EngineDetails = std::vector<EngineDetail>;
+
+// Engine-specific numbers by name ("kn"), recorded at every sample of the time series and
+// written beside it (results.h5 /md/timeseries/<name>).
+using EngineValues = std::vector<std::pair<std::string, double>>;
+
+// One engine serves every member of an ensemble: set_up starts a new run.
+class ParticleEngine {
+ public:
+  virtual ~ParticleEngine() = default;
+
+  virtual std::string name() const = 0;
+  // The engine's log file, or "none".
+  virtual std::string log_path() const = 0;
+
+  // Calibrates or verifies the collision rule for the scene's restitution (collective).
+  virtual CollisionRuleCheck check_collision_rule() = 0;
+
+  // A new run from the sampled particles (the full sample on every rank), at t = 0.
+  virtual void set_up(const ParticleSample& sample) = 0;
+  // The ranks over which the local particles are spread.
+  virtual MPI_Comm comm() const = 0;
+  // Times the engine reaches lie within half of this of the time asked for (LAMMPS: the time
+  // step; 0 for an engine that stops at any time).
+  virtual double time_resolution() const = 0;
+  // Advances to the reachable time nearest t (at least one step past now); returns it.
+  virtual double advance_to(double t) = 0;
+  // The engine's own adjustments after a segment has been sampled (LAMMPS: a softer contact
+  // as the gas cools).
+  virtual void between_segments() {}
+  // The engine's step count in this run (time steps, or events): the H5MD step.
+  virtual long long steps() const = 0;
+
+  // This rank's particles, for the coarse-grainer.
+  virtual LocalParticles local_particles() = 0;
+  // All particles, for a particle frame (collective).
+  virtual ParticleFrame gather_frame() = 0;
+  // Engine-specific numbers of the current state, taken at every time-series sample.
+  virtual EngineValues series_values() const { return {}; }
+
+  virtual EngineCost cost() const = 0;
+  virtual EngineDetails details() const { return {}; }
+};
+
+}  // namespace granvv::md

@@ -1,0 +1,412 @@
+"""Data access of the report: the only module that opens results.h5, summary.json and sweep.json,
+and names their groups and blocks (docs/outputs.md).
+
+A figure gets a Run (one output folder) or a SweepRun (a sweep folder). Run holds the HDF5 groups
+by meaning (run.hydro_ts is /hydro/timeseries, run.compare is /compare with its subgroups) as
+{"data": {name: array}, "attrs": {name: value}} and reads summary.json through one accessor per
+block (run.hydro_summary("energy_drift") is summary.json's hydro.energy_drift). The leaf names of
+datasets and keys are written in the figure that draws them, so that a new figure whose data exist
+is a change to its own file only.
+"""
+import json
+import math
+import tomllib
+import urllib.parse
+import warnings
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+RESULTS, SUMMARY, SWEEP = "results.h5", "summary.json", "sweep.json"
+
+
+class ReportError(Exception):
+    """Fatal: the report cannot be built at all."""
+
+
+class Skip(Exception):
+    """A figure whose data are absent or uninformative for this scene."""
+
+
+def _decode(v):
+    if isinstance(v, bytes):
+        return v.decode("utf-8", "replace")
+    if isinstance(v, np.ndarray):
+        if v.dtype.kind in "SO":
+            return [_decode(x) for x in v.tolist()]
+        return v
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+def _read_dataset(ds):
+    if ds.dtype.kind in "SO" or h5py.check_string_dtype(ds.dtype) is not None:
+        try:
+            return np.array(ds.asstr()[()], dtype=object)
+        except (TypeError, ValueError):
+            return np.array([_decode(x) for x in np.atleast_1d(ds[()])], dtype=object)
+    return np.asarray(ds[()], dtype=float) if ds.dtype.kind in "iufb" else ds[()]
+
+
+def _read_group(f, path):
+    """{'data': {name: array}, 'attrs': {name: value}} or None if absent."""
+    if path not in f or not isinstance(f[path], h5py.Group):
+        return None
+    g = f[path]
+    data = {}
+    for name, obj in g.items():
+        if isinstance(obj, h5py.Dataset):
+            data[name] = _read_dataset(obj)
+    return {"data": data, "attrs": {k: _decode(v) for k, v in g.attrs.items()}}
+
+
+def _read_compare(f):
+    """The /compare group of a side-by-side run: attrs, t, x, collision_clock, and its subgroups
+    (fields/<name>, peak, energy, inertia, modes), or None when the run compared nothing."""
+    top = _read_group(f, "compare")
+    if top is None:
+        return None
+    out = {"attrs": top["attrs"], "data": top["data"], "fields": {}}
+    if "compare/fields" in f and isinstance(f["compare/fields"], h5py.Group):
+        for name in f["compare/fields"]:
+            g = _read_group(f, f"compare/fields/{name}")
+            if g is not None:
+                out["fields"][name] = g
+    for sub in ("peak", "energy", "inertia", "modes"):
+        out[sub] = _read_group(f, f"compare/{sub}")
+    return out
+
+
+# The groups of results.h5 a report reads (docs/outputs.md), by the attribute name of Run.
+GROUPS = {"hydro_ts": "hydro/timeseries", "hydro_fields": "hydro/fields", "hydro_lagrangian": "hydro/lagrangian",
+          "hydro_theory": "hydro/theory", "hydro_convergence": "hydro/convergence", "md_group": "md",
+          "md_ts": "md/timeseries", "md_fields": "md/fields"}
+
+
+def load_results(path):
+    try:
+        with h5py.File(path, "r") as f:
+            res = {"attrs": {k: _decode(v) for k, v in f.attrs.items()}}
+            for key, p in GROUPS.items():
+                res[key] = _read_group(f, p)
+            res["compare"] = _read_compare(f)
+            res["groups"] = []
+            f.visit(lambda name: res["groups"].append(name) if isinstance(f[name], h5py.Group) else None)
+            return res
+    except FileNotFoundError:
+        raise ReportError(f"{path} not found")
+    except OSError as e:
+        raise ReportError(f"cannot read {path}: {str(e).splitlines()[0]}")
+
+
+def load_summary(path, warnings):
+    if not path.exists():
+        warnings.append(f"{path.name} not found: headline numbers are missing from this page.")
+        return {}
+    try:
+        with open(path) as fh:
+            s = json.load(fh)
+        if not isinstance(s, dict):
+            raise ValueError("top level is not an object")
+        return s
+    except (OSError, ValueError) as e:
+        warnings.append(f"{path.name} unreadable ({e}): headline numbers are missing from this page.")
+        return {}
+
+
+def get(d, *keys):
+    """Nested lookup that tolerates None/absent levels: get(s, 'hydro', 'tau_fit_window', 't_min')."""
+    for k in keys:
+        if not isinstance(d, dict) or k not in d:
+            return None
+        d = d[k]
+    return d
+
+
+def num(x):
+    """A finite float, or None."""
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+def arr(group, name, min_len=1):
+    """A finite-valued float array from a group, or None."""
+    if group is None:
+        return None
+    a = group["data"].get(name)
+    if a is None or not isinstance(a, np.ndarray) or a.dtype == object or a.size < min_len:
+        return None
+    return np.asarray(a, dtype=float)
+
+
+def snapshot_labels(fields, ns):
+    lab = fields["data"].get("label") if fields else None
+    if lab is None or len(lab) != ns:
+        return ["output"] * ns
+    return [str(x) for x in lab]
+
+
+def find_snapshot_summary(run, t):
+    """The summary.json snapshot record closest to time t (within 1e-6 relative)."""
+    best = None
+    for rec in run.hydro_summary("snapshots") or []:
+        tr = num(get(rec, "t"))
+        if tr is not None and abs(tr - t) <= 1e-6 * max(1.0, abs(t)):
+            best = rec
+    return best
+
+
+def md_value(run, key):
+    """A number of the particle engine: summary.json's md block first, else the /md attribute."""
+    v = num(run.md_summary(key))
+    if v is None and run.md_group:
+        v = num(run.md_group["attrs"].get(key))
+    return v
+
+
+def md_config(run, key):
+    """A resolved md.* configuration value as a plain string/number (TOML quotes removed)."""
+    v = run.config("md." + key)
+    return v.strip().strip('"') if isinstance(v, str) else v
+
+
+def md_members(G, name, size):
+    """[members x size] float array of /md/timeseries (a 1-D dataset is one member), or None."""
+    a = arr(G, name)
+    if a is None:
+        return None
+    if a.ndim == 1:
+        a = a[None, :]
+    if a.ndim != 2 or a.shape[1] != size or a.shape[0] < 1:
+        return None
+    return a
+
+
+def md_series(G, name, size):
+    """A 1-D float array of length size from /md/timeseries, or None (also when all NaN)."""
+    a = arr(G, name)
+    if a is None or a.ndim != 1 or a.size != size or not np.isfinite(a).any():
+        return None
+    return a
+
+
+def md_timeseries(run, at_least_two=False):
+    """(G, t) of /md/timeseries, or Skip with the reason (naming the MD error if the run failed)."""
+    G = run.md_ts
+    t = arr(G, "t", 1)
+    if t is None or t.ndim != 1:
+        err = run.md_summary("error")
+        if err:
+            raise Skip(f"the particle run failed before writing its time series: {err}")
+        raise Skip("no /md/timeseries in results.h5 (no particle run in this scene)")
+    if at_least_two and t.size < 2:
+        raise Skip("the particle time series has fewer than two samples")
+    return G, t
+
+
+def nanmean_rows(a):
+    """Mean over ensemble members, NaN (without a warning) where no member has a value."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return np.nanmean(a, axis=0)
+
+
+def cmp_data(run):
+    """(C, t, x) of /compare, or Skip."""
+    C = run.compare
+    if C is None:
+        raise Skip("no /compare group in results.h5 (the scene does not compare hydro and particles)")
+    t, x = arr(C, "t", 1), arr(C, "x", 2)
+    if t is None or x is None or t.ndim != 1 or x.ndim != 1:
+        raise Skip("/compare has no common output time (t) or no bins (x)")
+    return C, t, x
+
+
+def cmp_box(run):
+    """Lx in sigma (MD time = scaled t * Lx), or None."""
+    C = run.compare
+    v = num(C["attrs"].get("box_length")) if C else None
+    return v if v is not None else md_value(run, "box_length")
+
+
+def cmp_rows(g, name, shape):
+    """A [times x bins] array of a /compare subgroup with the given shape, or None."""
+    a = arr(g, name, 1)
+    return a if a is not None and a.shape == shape else None
+
+
+def cmp_vec(g, name, size):
+    a = arr(g, name, 1)
+    return a if a is not None and a.ndim == 1 and a.size == size and np.isfinite(a).any() else None
+
+
+def cmp_window(C):
+    """(window end or None, left_at or None, first field to leave or '')."""
+    a = C["attrs"]
+    first = a.get("first_field_to_leave")
+    return num(a.get("agreement_window")), num(a.get("left_at")), first if isinstance(first, str) else ""
+
+
+def compare_hydro_T(run):
+    """(t_MD, <T>) of the hydro of a comparison (its Haff curve in MD time), or None."""
+    if run.compare is None:
+        return None
+    ts = run.hydro_ts
+    t, T = arr(ts, "t", 2), arr(ts, "T_mean", 2)
+    L = cmp_box(run)
+    if t is None or T is None or T.size != t.size or not L:
+        return None
+    return t * L, T
+
+
+def load_sweep(path):
+    try:
+        with open(path) as fh:
+            sw = json.load(fh)
+    except (OSError, ValueError) as e:
+        raise ReportError(f"cannot read {path}: {e}")
+    if not isinstance(sw, dict) or not isinstance(sw.get("points"), list):
+        raise ReportError(f"{path} is not a granvv sweep (no points list)")
+    return sw
+
+
+def sweep_points(run):
+    """One record per point: value, dir, status, md block, cooling row (or None), report link."""
+    rows = {}
+    cool = run.cooling("points") or []
+    for c in cool:
+        i = c.get("point") if isinstance(c, dict) else None
+        if isinstance(i, int):
+            rows[i] = c
+    out = []
+    for i, p in enumerate(run.sweep("points")):
+        p = p if isinstance(p, dict) else {}
+        d = p.get("dir")
+        link = None
+        if isinstance(d, str) and d and (run.outdir / d / "report.html").is_file():
+            link = urllib.parse.quote(f"{d}/report.html", safe="/=,.-_")
+        out.append({"i": i, "value": num(p.get("value")), "dir": d, "status": p.get("status"),
+                    "exit_code": p.get("exit_code"), "md": p.get("md") if isinstance(p.get("md"), dict) else {},
+                    "cool": rows.get(i), "link": link, "hydro_wall": num(p.get("hydro_wall_seconds"))})
+    return out
+
+
+def sweep_cooling(run):
+    """Arrays over the points with a cooling row, sorted by r; Skip if fewer than one."""
+    pts = [p for p in sweep_points(run) if p["cool"]]
+    if not pts:
+        err = run.sweep("cooling_error")
+        raise Skip("no point measured a Haff time (cooling analysis absent)" + (f": {err}" if err else ""))
+    pts.sort(key=lambda p: num(p["cool"].get("restitution")) or 0.0)
+
+    def col(key, src="cool"):
+        return np.array([num(p[src].get(key)) if num(p[src].get(key)) is not None else np.nan for p in pts])
+
+    d = {k: col(k) for k in ("restitution", "t0", "t0_error", "zeta", "zeta_error", "zeta_enskog", "zeta_dilute",
+                             "zeta_paper", "zeta_paper_enskog", "deviation_enskog", "deviation_enskog_sigmas",
+                             "paper_deviation", "paper_deviation_sigmas")}
+    for k in ("haff_t0_theory", "haff_t0_theory_dilute", "haff_t0_paper", "area_fraction", "restitution_measured"):
+        d[k] = col(k, "md")
+    d["value"] = np.array([p["value"] if p["value"] is not None else np.nan for p in pts])
+    d["points"] = pts
+    return d
+
+
+
+class Run:
+    """One output folder of `granvv run`: results.h5 (required), summary.json (optional) and the
+    resolved case configuration stored in results.h5. figdir is set by the page."""
+
+    def __init__(self, outdir):
+        self.outdir = Path(outdir)
+        self.results_path = self.outdir / RESULTS
+        if not self.results_path.is_file():
+            raise ReportError(f"{self.results_path} not found" if not self.results_path.exists()
+                              else f"{self.results_path} is not a file")
+        res = load_results(self.results_path)
+        self.warnings = []
+        self.summary = load_summary(self.outdir / SUMMARY, self.warnings)
+        self.attrs = res["attrs"]
+        for key in GROUPS:
+            setattr(self, key, res[key])
+        self.compare = res["compare"]
+        self.groups = res["groups"]
+        self.config_text = self.attrs.get("config_toml")
+        self.cfg = {}
+        if isinstance(self.config_text, str) and self.config_text.strip():
+            try:
+                self.cfg = tomllib.loads(self.config_text)
+            except Exception as e:  # noqa: BLE001 - any parse problem is only a warning here
+                self.warnings.append(f"config_toml in results.h5 does not parse as TOML ({e}).")
+        self.figdir = None
+
+    # summary.json, one accessor per block
+    def top_summary(self, key):
+        return self.summary.get(key)
+
+    def hydro_summary(self, *keys):
+        return get(self.summary, "hydro", *keys)
+
+    def md_summary(self, *keys):
+        return get(self.summary, "md", *keys)
+
+    def compare_summary(self, *keys):
+        return get(self.summary, "compare", *keys)
+
+    def engine_blocks(self):
+        """[(engine name, its summary.json block)] of the engines that wrote one."""
+        return [(eng, self.summary[eng]) for eng in ("hydro", "md", "compare")
+                if isinstance(self.summary.get(eng), dict) and self.summary[eng]]
+
+    def has_md(self):
+        return bool(self.md_group or self.md_ts or self.md_fields or self.summary.get("md"))
+
+    def has_compare(self):
+        return bool(self.compare or self.summary.get("compare"))
+
+    def config(self, dotted):
+        """A resolved configuration value: root attribute 'a.b', else the parsed TOML."""
+        v = self.attrs.get(dotted)
+        if v is None and self.cfg:
+            d = self.cfg
+            for part in dotted.split("."):
+                d = d.get(part) if isinstance(d, dict) else None
+            v = d
+        return v
+
+    def config_table(self, *keys):
+        """A table of the parsed case configuration (e.g. config_table("case"))."""
+        return get(self.cfg, *keys)
+
+
+class SweepRun:
+    """A folder of `granvv sweep`: sweep.json and the sub-folders of its points."""
+
+    def __init__(self, outdir):
+        self.outdir = Path(outdir)
+        self.sweep_path = self.outdir / SWEEP
+        self.sw = load_sweep(self.sweep_path)
+        self.figdir = None
+
+    def sweep(self, *keys):
+        """A value of sweep.json: sweep("key"), sweep("points")."""
+        return get(self.sw, *keys)
+
+    def cooling(self, *keys):
+        """A value of sweep.json's cooling analysis: cooling("power_of_one_minus_r2")."""
+        return get(self.sw, "cooling", *keys)
+
+    def without_points(self):
+        """sweep.json without the per-point blocks."""
+        return {k: v for k, v in self.sw.items() if k != "points"}
+
+
+def is_sweep_folder(outdir):
+    """A sweep folder holds sweep.json and no results.h5."""
+    outdir = Path(outdir)
+    return not (outdir / RESULTS).exists() and (outdir / SWEEP).is_file()
