@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "app/case_config.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 
 namespace granvv::app {
@@ -25,10 +26,48 @@ constexpr auto kIntegers = ValueType::integer_array;
 const Default kRequired = Default::required();
 const Default kFileStem = Default::file_stem();
 const Default kEmpty = Default::empty_array();
-}  // namespace
 
-const std::vector<KeySpec>& case_schema() {
-  static const std::vector<KeySpec> rows = {
+Constraint constraint_of(const hydro::ParameterRange& range) {
+  Constraint c;
+  c.min = range.min;
+  c.max = range.max;
+  c.min_exclusive = range.min_exclusive;
+  c.max_exclusive = range.max_exclusive;
+  return c;
+}
+
+// initial.type, one of the registered types, then initial.<name> for every parameter a type
+// declares; its description names the types that read it ("single_mode/linear_mode: ...").
+std::vector<KeySpec> initial_condition_rows() {
+  std::vector<std::string> types;
+  for (const auto& type : hydro::initial_condition_types()) types.push_back(type.name);
+  std::vector<KeySpec> rows = {
+      {"initial.type", kString, "single_mode", one_of(types), "initial condition"}};
+  for (const auto& key : hydro::initial_parameter_keys()) {
+    const auto& spec = key.spec;
+    const Default value = std::visit([](auto x) { return Default(x); }, spec.default_value);
+    const std::string help =
+        key.types.empty() ? spec.help : join(key.types, "/") + ": " + spec.help;
+    rows.push_back({"initial." + spec.name, spec.is_integer() ? kInteger : kReal, value,
+                    constraint_of(spec.range), help});
+  }
+  return rows;
+}
+
+// `rows` with the [initial] rows inserted after the last [physics] row.
+std::vector<KeySpec> with_initial_condition_rows(std::vector<KeySpec> rows) {
+  auto after_physics = rows.begin();
+  for (auto it = rows.begin(); it != rows.end(); ++it) {
+    if (it->section() == "physics") after_physics = it + 1;
+  }
+  const std::vector<KeySpec> initial = initial_condition_rows();
+  rows.insert(after_physics, initial.begin(), initial.end());
+  return rows;
+}
+
+// Every row but the [initial] ones (with_initial_condition_rows), in schema order.
+std::vector<KeySpec> rows_without_initial() {
+  return {
       // [case]
       {"case.name", kString, kFileStem, name_like(), "scene name; output goes to out/<name>"},
       {"case.description", kString, "", any_value(), "one-line description for `granvv list`"},
@@ -40,25 +79,8 @@ const std::vector<KeySpec>& case_schema() {
        "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0)"},
       {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
 
-      // [initial]
-      {"initial.type", kString, "single_mode",
-       one_of({"uniform", "single_mode", "random_modes", "linear_mode"}), "initial condition"},
-      {"initial.velocity_amplitude", kReal, -0.05, any_value(),
-       "single_mode: v = a sin(2 pi mode x), amplitude a"},
-      {"initial.mode", kInteger, 1, at_least(1), "single_mode/linear_mode: wave number k"},
-      {"initial.random_modes", kInteger, 300, at_least(1),
-       "random_modes: number of Fourier modes in the perturbation"},
-      {"initial.random_amplitude", kReal, 1e-3, non_negative(),
-       "random_modes: rms relative amplitude of the perturbation"},
-      {"initial.seed", kInteger, 1, at_least(0), "random_modes: random seed"},
-      {"initial.linear_amplitude", kReal, 1e-6, positive(),
-       "linear_mode: amplitude of the linear eigenmode"},
-      {"initial.linear_branch", kInteger, 0, closed_closed(0, 2),
-       "linear_mode: eigenvalue branch, 0 = most unstable"},
-      {"initial.transverse_amplitude", kReal, 0.0, any_value(),
-       "amplitude b of a transverse velocity v_y = b cos(2 pi k_y x) (needs "
-       "hydro.transverse_velocity)"},
-      {"initial.transverse_mode", kInteger, 1, at_least(1), "mode k_y of the transverse velocity"},
+      // [initial]: initial.type and the parameters its generators declare (hydro/initial_*.cpp),
+      // inserted here by with_initial_condition_rows().
 
       // [hydro]
       {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
@@ -152,6 +174,12 @@ const std::vector<KeySpec>& case_schema() {
       {"compare.density_modes", kInteger, 0, at_least(0),
        "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
   };
+}
+
+}  // namespace
+
+const std::vector<KeySpec>& case_schema() {
+  static const std::vector<KeySpec> rows = with_initial_condition_rows(rows_without_initial());
   return rows;
 }
 

@@ -266,11 +266,9 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   }
 
   const hydro::InitialFields case_fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
-  const bool smooth = hydro.initial.type == "single_mode" && hydro.initial.velocity_amplitude != 0;
-  const double inertia_tau = smooth ? hydro::FlowByInertia::single_mode(
-                                          hydro.initial.velocity_amplitude, hydro.initial.mode)
-                                          .singularity_time()
-                                    : kNaN;
+  const auto inertia_reference = hydro::inertia_reference(hydro.initial);
+  const bool smooth = inertia_reference.has_value();
+  const double inertia_tau = smooth ? inertia_reference->flow.singularity_time() : kNaN;
   const double t0 = hydro::haff_time_scale(hydro.physics);
 
   for (const auto& [m, h] : pairs) {

@@ -15,10 +15,11 @@
 
 namespace granvv::app {
 
+// The case's compare.* keys; their defaults are in the case schema only (app/case_schema.cpp).
 struct CompareScene {
-  bool hydro_from_md = true;
-  double sigmas = 3.0;
-  double agreement_fraction = 0.95;
+  bool hydro_from_md = false;
+  double sigmas = 0.0;
+  double agreement_fraction = 0.0;
   compare::VerdictRule verdict_rule;  // its offset_sigmas is compare.sigmas
   int density_modes = 0;
 };

@@ -6,6 +6,7 @@
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/haff_deviation.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::app {
@@ -13,17 +14,17 @@ namespace granvv::app {
 HydroScene hydro_scene_from(const CaseConfig& c) {
   HydroScene s;
   s.physics = {c.real("physics.K"), c.real("physics.q")};
-  auto& ini = s.initial;
-  ini.type = c.string("initial.type");
-  ini.velocity_amplitude = c.real("initial.velocity_amplitude");
-  ini.mode = static_cast<int>(c.integer("initial.mode"));
-  ini.random_modes = static_cast<int>(c.integer("initial.random_modes"));
-  ini.random_amplitude = c.real("initial.random_amplitude");
-  ini.seed = static_cast<unsigned long long>(c.integer("initial.seed"));
-  ini.linear_amplitude = c.real("initial.linear_amplitude");
-  ini.linear_branch = static_cast<int>(c.integer("initial.linear_branch"));
-  ini.transverse_amplitude = c.real("initial.transverse_amplitude");
-  ini.transverse_mode = static_cast<int>(c.integer("initial.transverse_mode"));
+  hydro::ParameterSet values;
+  for (const auto& key : hydro::initial_parameter_keys()) {
+    const std::string name = "initial." + key.spec.name;
+    if (key.spec.is_integer()) {
+      values.set(key.spec.name, c.integer(name));
+    } else {
+      values.set(key.spec.name, c.real(name));
+    }
+  }
+  s.initial = hydro::initial_parameters(c.string("initial.type"), std::move(values));
+  const auto& ini = s.initial;
   s.cells = static_cast<int>(c.integer("hydro.cells"));
   s.node_offset = c.real("hydro.node_offset");
   s.transverse = c.boolean("hydro.transverse_velocity");
@@ -56,15 +57,10 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   const std::string mesh = hydro::convergence_mesh_problem(s.convergence_cells, s.node_offset);
   if (!mesh.empty())
     throw ConfigError(c.origin("convergence.cells") + ": convergence.cells: " + mesh);
-  if (ini.transverse_amplitude != 0.0 && !s.transverse) {
-    throw ConfigError(c.origin("initial.transverse_amplitude") +
-                      ": initial.transverse_amplitude = " + format_real(ini.transverse_amplitude) +
-                      ": a transverse velocity needs hydro.transverse_velocity = true");
-  }
-  if (ini.type == "linear_mode" && ini.linear_amplitude > 1e-2) {
-    throw ConfigError(c.origin("initial.linear_amplitude") +
-                      ": initial.linear_amplitude = " + format_real(ini.linear_amplitude) +
-                      ": a linear mode must be small; allowed: (0, 0.01]");
+  if (const auto problem = hydro::initial_parameter_problem(ini, s.transverse)) {
+    const std::string key = "initial." + problem->parameter;
+    throw ConfigError(c.origin(key) + ": " + key + " = " + format_value(c.value(key)) + ": " +
+                      problem->reason);
   }
   const auto fields = hydro::make_initial_fields(ini, s.physics);
   const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
@@ -92,12 +88,9 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   const auto& run = out.run;
 
   // Paper Fig. 3: flow by inertia from the initial velocity profile.
-  const bool smooth_velocity = scene.initial.type == "single_mode";
-  std::optional<hydro::FlowByInertia> inertia;
-  if (smooth_velocity) {
-    inertia =
-        hydro::FlowByInertia::single_mode(scene.initial.velocity_amplitude, scene.initial.mode);
-    const double tau = inertia->singularity_time();
+  const auto inertia = hydro::inertia_reference(scene.initial);
+  if (inertia) {
+    const double tau = inertia->flow.singularity_time();
     if (std::isfinite(tau)) out.inertia_tau = tau;
   }
   for (const auto& snap : run.snapshots) {
@@ -110,9 +103,9 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
       check.xi.push_back(hydro::wrap_position(xi));
       check.inertia_v0.push_back(out.fields.v(xi));
     }
-    if (smooth_velocity && scene.initial.velocity_amplitude != 0.0) {
-      check.collapse_error = hydro::inertia_collapse_error(
-          snap.state, out.fields.v, std::abs(scene.initial.velocity_amplitude));
+    if (inertia) {
+      check.collapse_error =
+          hydro::inertia_collapse_error(snap.state, out.fields.v, inertia->velocity_scale);
     }
     out.snapshots.push_back(std::move(check));
   }
@@ -134,11 +127,10 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   out.haff_max_relative_error = hydro::haff_max_relative_error(run.series.t, run.series.T_mean,
                                                                hydro::haff_time_scale(physics));
 
-  if (scene.initial.type == "linear_mode") {
+  if (const auto seeded = hydro::seeded_eigenmode(scene.initial)) {
     std::vector<hydro::LagrangianState> states;
     for (const auto& snap : run.snapshots) states.push_back(snap.state);
-    out.linear_rate = hydro::measure_linear_rate(states, *closure, scene.initial.mode,
-                                                 scene.initial.linear_branch);
+    out.linear_rate = hydro::measure_linear_rate(states, *closure, seeded->mode, seeded->branch);
   }
   if (scene.convergence_cells.size() >= 3) {
     auto time_step = scene.control.time_step;

@@ -19,17 +19,18 @@ struct HydroScene {
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (app/compare_scene.hpp).
   std::optional<hydro::InitialFields> given_fields;
+  // The case's keys; their defaults are in the case schema only (app/case_schema.cpp).
   int cells = 0;
-  double node_offset = 0.5;
+  double node_offset = 0.0;
   bool transverse = false;
   hydro::RunControl control;
-  double progress_seconds = 2.0;
-  double tau_fit_min_density = 10, tau_fit_max_density = 1e4;
-  double profile_fit_x_min = 1e-3, profile_fit_x_max = 2e-2;
-  double collapse_tolerance = 0.015;
+  double progress_seconds = 0.0;
+  double tau_fit_min_density = 0.0, tau_fit_max_density = 0.0;
+  double profile_fit_x_min = 0.0, profile_fit_x_max = 0.0;
+  double collapse_tolerance = 0.0;
   std::vector<int> convergence_cells;
-  double convergence_t = 1.0;
-  double convergence_cfl = 0.5;
+  double convergence_t = 0.0;
+  double convergence_cfl = 0.0;
 };
 
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the

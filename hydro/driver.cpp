@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "hydro/haff.hpp"
 #include "hydro/integrator.hpp"
@@ -34,6 +35,13 @@ double crossing_time(double t0, double n0, double t1, double n1, double level) {
 
 RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl& control,
                     const ProgressCallback& progress) {
+  const TimeStepControl& ts = control.time_step;
+  if (!(ts.cfl > 0 && ts.max_compression > 0 && ts.max_temperature_change > 0 && ts.dt_max > 0) ||
+      control.series_every < 1) {
+    throw std::invalid_argument(
+        "run_hydro: cfl, max_compression, max_temperature_change and dt_max must be > 0, "
+        "series_every >= 1");
+  }
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto wall = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };

@@ -15,14 +15,15 @@
 
 namespace granvv::hydro {
 
+// The case's hydro.* keys (defaults in the case schema, app/case_schema.cpp).
 struct RunControl {
-  double t_end = 1.0;
+  double t_end = 0.0;
   std::vector<double> output_times;  // snapshots are taken exactly at these times
   TimeStepControl time_step;
-  double stop_density = 1e6;      // singularity: peak density reaches this
-  double min_cell_width = 1e-14;  // singularity: a cell gets this thin
+  double stop_density = 0.0;    // singularity: peak density reaches this
+  double min_cell_width = 0.0;  // singularity: a cell gets this thin
   std::vector<double> crossing_densities = {10.0, 100.0, 1000.0, 1e6};
-  int series_every = 1;
+  int series_every = 0;  // >= 1
 };
 
 struct Snapshot {
@@ -55,6 +56,7 @@ struct Progress {
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
+// Throws std::invalid_argument if a time-step bound is not > 0 or series_every < 1.
 RunResult run_hydro(const Closure& closure, LagrangianState initial, const RunControl& control,
                     const ProgressCallback& progress = {});
 

@@ -1,17 +1,16 @@
 #include "hydro/initial_conditions.hpp"
 
 #include <cmath>
-#include <random>
-#include <stdexcept>
+#include <utility>
 
-#include "hydro/linear_stability.hpp"
+#include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
 namespace {
-
 constexpr double kPi = 3.14159265358979323846;
+}  // namespace
 
-InitialFields uniform(const InitialParameters&, const Physics&) {
+InitialFields uniform_fields() {
   InitialFields f;
   f.n = [](double) { return 1.0; };
   f.v = [](double) { return 0.0; };
@@ -21,99 +20,57 @@ InitialFields uniform(const InitialParameters&, const Physics&) {
   return f;
 }
 
-// Paper Eq. (8): n = T = 1, v = a sin(2 pi k x).
-InitialFields single_mode(const InitialParameters& p, const Physics& ph) {
-  InitialFields f = uniform(p, ph);
-  const double a = p.velocity_amplitude, kx = 2.0 * kPi * p.mode;
-  f.v = [a, kx](double x) { return a * std::sin(kx * x); };
-  f.dv = [a, kx](double x) { return a * kx * std::cos(kx * x); };
-  return f;
+// Any scene may add a transverse velocity v_y = b cos(2 pi k_y x): the shear mode whose growth
+// in a long box the 1D model leaves out unless v_y is carried (docs/physics.md §6).
+const std::vector<ParameterSpec>& common_initial_parameters() {
+  static const std::vector<ParameterSpec> parameters = {
+      {"transverse_amplitude", 0.0, ParameterRange::any(),
+       "amplitude b of a transverse velocity v_y = b cos(2 pi k_y x) (needs "
+       "hydro.transverse_velocity)"},
+      {"transverse_mode", 1LL, ParameterRange::at_least(1), "mode k_y of the transverse velocity"},
+  };
+  return parameters;
 }
 
-// Paper Figs. 1-2: n, v, T each 1 (or 0) plus a sum of random Fourier modes k = 1..M with
-// amplitudes uniform in [0, A] and uniform random phases. Uses the raw 64-bit Mersenne
-// Twister output so that a seed gives the same scene on every platform.
-InitialFields random_modes(const InitialParameters& p, const Physics& ph) {
-  std::mt19937_64 rng(p.seed);
-  auto uniform01 = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  struct Series {
-    std::vector<double> amplitude, phase;
-  };
-  auto draw = [&]() {
-    Series s;
-    for (int k = 1; k <= p.random_modes; ++k) {
-      s.amplitude.push_back(p.random_amplitude * uniform01());
-      s.phase.push_back(2.0 * kPi * uniform01());
-    }
-    return s;
-  };
-  auto sum = [](const Series& s, double x) {
-    double y = 0.0;
-    for (size_t k = 0; k < s.amplitude.size(); ++k) {
-      y += s.amplitude[k] * std::cos(2.0 * kPi * (k + 1) * x + s.phase[k]);
-    }
-    return y;
-  };
-  auto dsum = [](const Series& s, double x) {
-    double y = 0.0;
-    for (size_t k = 0; k < s.amplitude.size(); ++k) {
-      const double kx = 2.0 * kPi * (k + 1);
-      y -= s.amplitude[k] * kx * std::sin(kx * x + s.phase[k]);
-    }
-    return y;
-  };
-  const Series dn = draw(), dv = draw(), dT = draw();
-  InitialFields f = uniform(p, ph);
-  f.n = [dn, sum](double x) { return 1.0 + sum(dn, x); };
-  f.v = [dv, sum](double x) { return sum(dv, x); };
-  f.dv = [dv, dsum](double x) { return dsum(dv, x); };
-  f.T = [dT, sum](double x) { return 1.0 + sum(dT, x); };
-  return f;
-}
-
-// A small eigenmode of the linearised equations around the homogeneous cooling state:
-// (nu, w, theta) = amplitude * Re(V e^{i kx x}) with V the eigenvector of the chosen branch.
-InitialFields linear_mode(const InitialParameters& p, const Physics& ph) {
-  const auto modes = hcs_modes(ph, p.mode);
-  const Eigen::Vector3cd V = modes.at(p.linear_branch).eigenvector * p.linear_amplitude;
-  const double kx = 2.0 * kPi * p.mode;
-  auto component = [kx](std::complex<double> c) {
-    return [c, kx](double x) { return std::real(c * std::exp(std::complex<double>(0.0, kx * x))); };
-  };
-  InitialFields f = uniform(p, ph);
-  auto nu = component(V[0]), w = component(V[1]), theta = component(V[2]);
-  f.n = [nu](double x) { return 1.0 + nu(x); };
-  f.v = w;  // T_H(0) = 1, so u = w at t = 0
-  f.dv = [V, kx](double x) {
-    return std::real(std::complex<double>(0.0, kx) * V[1] *
-                     std::exp(std::complex<double>(0.0, kx * x)));
-  };
-  f.T = [theta](double x) { return 1.0 + theta(x); };
-  return f;
-}
-
-}  // namespace
-
-const std::map<std::string, InitialConditionGenerator>& initial_condition_registry() {
-  static const std::map<std::string, InitialConditionGenerator> registry = {
-      {"uniform", uniform},
-      {"single_mode", single_mode},
-      {"random_modes", random_modes},
-      {"linear_mode", linear_mode},
-  };
-  return registry;
+InitialParameters initial_parameters(std::string type, ParameterSet values) {
+  InitialParameters p;
+  p.type = std::move(type);
+  p.values = std::move(values);
+  if (const auto seeded = seeded_eigenmode(p)) {
+    p.mode = seeded->mode;
+    p.linear_branch = seeded->branch;
+  }
+  return p;
 }
 
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics) {
-  const auto& registry = initial_condition_registry();
-  const auto it = registry.find(p.type);
-  if (it == registry.end()) throw std::invalid_argument("unknown initial condition " + p.type);
-  InitialFields f = it->second(p, physics);
-  if (p.transverse_amplitude != 0.0) {
-    const double b = p.transverse_amplitude, ky = 2.0 * kPi * p.transverse_mode;
+  InitialFields f = find_initial_condition(p.type).generate(p.values, physics);
+  const double b = p.values.real("transverse_amplitude");
+  if (b != 0.0) {
+    const double ky = 2.0 * kPi * p.values.integer("transverse_mode");
     f.vy = [b, ky](double x) { return b * std::cos(ky * x); };
   }
   return f;
+}
+
+std::optional<ParameterProblem> initial_parameter_problem(const InitialParameters& p,
+                                                          bool transverse_velocity) {
+  if (p.values.real("transverse_amplitude") != 0.0 && !transverse_velocity) {
+    return ParameterProblem{"transverse_amplitude",
+                            "a transverse velocity needs hydro.transverse_velocity = true"};
+  }
+  const auto& problem = find_initial_condition(p.type).problem;
+  return problem ? problem(p.values) : std::nullopt;
+}
+
+std::optional<InertiaReference> inertia_reference(const InitialParameters& p) {
+  const auto& reference = find_initial_condition(p.type).inertia_reference;
+  return reference ? reference(p.values) : std::nullopt;
+}
+
+std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p) {
+  const auto& seeded = find_initial_condition(p.type).seeded_eigenmode;
+  return seeded ? seeded(p.values) : std::nullopt;
 }
 
 LagrangianState discretize(const InitialFields& f, int cells, double node_offset, bool transverse) {

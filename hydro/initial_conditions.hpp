@@ -1,13 +1,16 @@
 #pragma once
 // Initial conditions as continuous fields n(x), v(x), v_y(x), T(x) on [-1/2, 1/2), and their
-// discretisation onto the Lagrangian mesh. Scenes register their generator by name
-// (cases name it as initial.type), so no switch over problems is spread across files.
+// discretisation onto the Lagrangian mesh. Each type (cases name it as initial.type) is one
+// generator file hydro/initial_<name>.cpp listed in hydro/initial_condition_registry.cpp; it
+// declares its own parameters, from which the case schema derives the initial.* keys.
 #include <functional>
-#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "hydro/flow_by_inertia.hpp"
 #include "hydro/lagrangian_state.hpp"
+#include "hydro/parameter_set.hpp"
 #include "hydro/physics.hpp"
 
 namespace granvv::hydro {
@@ -19,27 +22,47 @@ struct InitialFields {
   std::function<double(double)> dv;
 };
 
+// The homogeneous state n = T = 1, v = v_y = 0 that the generators perturb.
+InitialFields uniform_fields();
+
 struct InitialParameters {
-  std::string type = "single_mode";
-  double velocity_amplitude = -0.05;  // a in v = a sin(2 pi k x), paper Eq. (8)
-  int mode = 1;                       // k
-  int random_modes = 300;
-  double random_amplitude = 1e-3;
-  unsigned long long seed = 1;
-  double linear_amplitude = 1e-6;
-  int linear_branch = 0;  // 0: fastest-growing eigenmode of mode k, 1, 2: the others
-  // Any scene may add a transverse velocity v_y = b cos(2 pi k_y x): the shear mode whose
-  // growth in a long box the 1D model leaves out unless v_y is carried (DESIGN.md §6).
-  double transverse_amplitude = 0.0;
-  int transverse_mode = 1;
+  std::string type;     // a registered initial condition (initial.type)
+  ParameterSet values;  // every parameter of initial_parameter_specs(), by name
+  // The eigenmode (k, branch) a linear_mode scene seeds (seeded_eigenmode), kept as members
+  // only because app/summary.cpp reads them; 0 for other types.
+  int mode = 0, linear_branch = 0;
 };
 
-using InitialConditionGenerator =
-    std::function<InitialFields(const InitialParameters&, const Physics&)>;
+// A parameter that is outside what the generator can use, though within its per-key range.
+struct ParameterProblem {
+  std::string parameter;  // "linear_amplitude"
+  std::string reason;     // "a linear mode must be small; allowed: (0, 0.01]"
+};
 
-// The registered generators: uniform, single_mode, random_modes, linear_mode.
-const std::map<std::string, InitialConditionGenerator>& initial_condition_registry();
+// The exact flow by inertia from the initial velocity (docs/physics.md §3, paper Eq. 5), for
+// types whose velocity is a smooth, non-zero profile; collapse errors are in units of
+// velocity_scale.
+struct InertiaReference {
+  FlowByInertia flow;
+  double velocity_scale;
+};
+
+// The eigenmode of the homogeneous cooling state a type seeds, whose growth rate is measured.
+struct SeededEigenmode {
+  int mode;
+  int branch;
+};
+
+// type and values, with the seeded eigenmode filled in. Throws std::invalid_argument for an
+// unknown type.
+InitialParameters initial_parameters(std::string type, ParameterSet values);
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics);
+// First problem of the parameters: a transverse velocity without transverse_velocity, or a
+// problem the type's generator reports.
+std::optional<ParameterProblem> initial_parameter_problem(const InitialParameters& p,
+                                                          bool transverse_velocity);
+std::optional<InertiaReference> inertia_reference(const InitialParameters& p);
+std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p);
 
 // Nodes at x_j = -1/2 + (j + offset)/N (offset 1/2 puts a cell centre at x = 0, where the
 // single-mode singularity forms); cell masses and temperatures are exact cell averages

@@ -5,9 +5,10 @@
 
 namespace granvv::hydro {
 
+// The case gives both (physics.K, physics.q); no defaults here.
 struct Physics {
-  double K = 4e-4;  // Knudsen number K = (2/sqrt(pi)) (sigma Lx n0)^-1
-  double q = 0.01;  // inelasticity q = (1 - r)/2
+  double K = 0.0;  // Knudsen number K = (2/sqrt(pi)) (sigma Lx n0)^-1
+  double q = 0.0;  // inelasticity q = (1 - r)/2
 };
 
 }  // namespace granvv::hydro

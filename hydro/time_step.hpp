@@ -12,11 +12,12 @@
 
 namespace granvv::hydro {
 
+// All > 0 (run_hydro checks); their defaults are those of the case schema (hydro.cfl, ...).
 struct TimeStepControl {
-  double cfl = 2.0;
-  double max_compression = 0.1;         // largest |dv| dt / dx per cell and step
-  double max_temperature_change = 0.2;  // largest |dT/T| per step from work and conduction
-  double dt_max = 0.05;
+  double cfl = 0.0;
+  double max_compression = 0.0;         // largest |dv| dt / dx per cell and step
+  double max_temperature_change = 0.0;  // largest |dT/T| per step from work and conduction
+  double dt_max = 0.0;
 };
 
 struct TimeStepLimit {

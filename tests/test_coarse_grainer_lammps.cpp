@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "hydro/initial_conditions.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/coarse_grainer.hpp"
 #include "md_bridge/contact_model.hpp"
 #include "md_bridge/disk_gas.hpp"
@@ -19,10 +19,9 @@ namespace {
 
 TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
   const ParticleScene scene = scene_from_particles(3000, 0.1, 30.0, 0.9);
-  hydro::InitialParameters ip;
-  ip.type = "single_mode";
-  ip.velocity_amplitude = -0.3;
-  const auto sample = sample_particles(scene, hydro::make_initial_fields(ip, {}), 3);
+  const auto single_mode = hydro::find_initial_condition("single_mode")
+                               .generate({{"velocity_amplitude", -0.3}, {"mode", 1LL}}, {});
+  const auto sample = sample_particles(scene, single_mode, 3);
   const double lx = scene.box_length, ly = scene.box_width;
   const int bins = 25;
 

@@ -8,21 +8,24 @@
 #include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
-#include "hydro/initial_conditions.hpp"
+#include "hydro/initial_condition_registry.hpp"
+#include "support/run_control.hpp"
 
 namespace granvv::hydro {
 namespace {
 
 RunResult run_scene(const InitialParameters& ip, const Physics& p, int cells, double t_end,
                     bool transverse = false) {
-  RunControl control;
-  control.t_end = t_end;
   return run_hydro(DiluteClosure(p), discretize(make_initial_fields(ip, p), cells, 0.5, transverse),
-                   control);
+                   testing::run_control(t_end));
 }
 
 TEST(HydroConservation, SingleModeConservesMassMomentumAndEnergyToRoundOff) {
-  InitialParameters ip;  // paper Eq. (8), a = -0.05
+  const InitialParameters ip =  // paper Eq. (8), a = -0.05
+      initial_parameters("single_mode", {{"velocity_amplitude", -0.05},
+                                         {"mode", 1LL},
+                                         {"transverse_amplitude", 0.0},
+                                         {"transverse_mode", 1LL}});
   const RunResult r = run_scene(ip, {4e-4, 0.01}, 400, 2.0);
   ASSERT_EQ(r.status, RunStatus::completed) << r.stop_reason;
   // Round-off: ~1e-16 per operation, a few hundred steps, sums over 400 cells.
@@ -34,14 +37,12 @@ TEST(HydroConservation, SingleModeConservesMassMomentumAndEnergyToRoundOff) {
 }
 
 TEST(HydroConservation, RandomModesWithTransverseFlowConserveEnergy) {
-  InitialParameters ip;
-  ip.type = "random_modes";
-  ip.random_modes = 40;
-  ip.random_amplitude = 2e-3;
+  const ParameterSet random_modes = {
+      {"random_modes", 40LL}, {"random_amplitude", 2e-3}, {"seed", 1LL}};
   Physics p{2e-3, 0.01};
-  RunControl control;
-  control.t_end = 0.5;
-  auto state = discretize(make_initial_fields(ip, p), 300, 0.5, true);
+  const RunControl control = testing::run_control(0.5);
+  auto state =
+      discretize(find_initial_condition("random_modes").generate(random_modes, p), 300, 0.5, true);
   for (int j = 0; j < state.cells(); ++j)
     state.node_vy[j] = 0.01 * std::sin(2 * M_PI * 3 * state.node_x[j]);
   const RunResult r = run_hydro(DiluteClosure(p), state, control);
@@ -52,8 +53,8 @@ TEST(HydroConservation, RandomModesWithTransverseFlowConserveEnergy) {
 }
 
 TEST(HydroConservation, HomogeneousStateFollowsHaffsLaw) {
-  InitialParameters ip;
-  ip.type = "uniform";
+  const InitialParameters ip =
+      initial_parameters("uniform", {{"transverse_amplitude", 0.0}, {"transverse_mode", 1LL}});
   const Physics p{4e-4, 0.01};
   const double t0 = haff_time_scale(p);
   const RunResult r = run_scene(ip, p, 64, 100 * t0);
@@ -64,6 +65,18 @@ TEST(HydroConservation, HomogeneousStateFollowsHaffsLaw) {
   }
   // The cooling step is the exact solution at fixed density, so only round-off remains.
   EXPECT_LT(worst, 1e-12);
+}
+
+// The controls have no defaults of their own (the case schema holds them): an unset control
+// is refused rather than run with a zero time step.
+TEST(HydroConservation, RunRefusesAControlWithoutTimeStepBounds) {
+  RunControl control;
+  control.t_end = 0.1;
+  const auto state = discretize(uniform_fields(), 16, 0.5, false);
+  EXPECT_THROW(run_hydro(DiluteClosure({4e-4, 0.01}), state, control), std::invalid_argument);
+  control = testing::run_control(0.1);
+  control.series_every = 0;
+  EXPECT_THROW(run_hydro(DiluteClosure({4e-4, 0.01}), state, control), std::invalid_argument);
 }
 
 }  // namespace

@@ -11,9 +11,10 @@
 #include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/haff.hpp"
-#include "hydro/initial_conditions.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/linear_stability.hpp"
+#include "support/run_control.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -28,10 +29,8 @@ std::vector<LagrangianState> evolve(const InitialFields& fields, std::complex<do
   const double t0 = haff_time_scale(kPhysics);
   const double s_end = std::min(0.4, 3.0 / std::abs(rate.real()));
   const int samples = std::max(20, int(std::ceil(s_end * std::abs(rate.imag()) / 0.3)));
-  RunControl control;
-  control.time_step.cfl = 0.5;
   auto time_of = [t0](double s) { return t0 * std::expm1(s / t0); };
-  control.t_end = time_of(s_end);
+  RunControl control = testing::run_control(time_of(s_end), 0.5);
   for (int i = 1; i <= samples; ++i) control.output_times.push_back(time_of(s_end * i / samples));
   const RunResult r = run_hydro(kClosure, discretize(fields, cells, 0.5, transverse), control);
   EXPECT_EQ(r.status, RunStatus::completed) << r.stop_reason;
@@ -44,14 +43,12 @@ class LinearGrowth : public ::testing::TestWithParam<std::tuple<int, int>> {};
 
 TEST_P(LinearGrowth, RateMatchesDispersionRelation) {
   const auto [k, branch] = GetParam();
-  InitialParameters ip;
-  ip.type = "linear_mode";
-  ip.mode = k;
-  ip.linear_branch = branch;
-  ip.linear_amplitude = 1e-6;
+  const ParameterSet linear_mode = {
+      {"mode", (long long)k}, {"linear_branch", (long long)branch}, {"linear_amplitude", 1e-6}};
   const auto modes = hcs_modes(kPhysics, k);
   const int cells = k <= 5 ? 1000 : 2000;
-  const auto states = evolve(make_initial_fields(ip, kPhysics), modes[branch].rate, cells);
+  const auto states = evolve(find_initial_condition("linear_mode").generate(linear_mode, kPhysics),
+                             modes[branch].rate, cells);
   const MeasuredRate r = measure_linear_rate(states, kClosure, k, branch);
   EXPECT_LT(r.relative_error, 1e-3) << "k = " << k << " branch " << branch << ": measured "
                                     << r.measured << ", theory " << r.theory;
@@ -67,9 +64,7 @@ INSTANTIATE_TEST_SUITE_P(UnstableAndStable, LinearGrowth,
 
 TEST(LinearGrowth, ShearModeOfTransverseVelocity) {
   for (int k : {1, 3, 6, 12}) {  // shear-unstable iff pi k K < 2 sqrt(q): k <= 6
-    InitialParameters ip;
-    ip.type = "uniform";
-    InitialFields fields = make_initial_fields(ip, kPhysics);
+    InitialFields fields = uniform_fields();
     const double kx = 2 * M_PI * k;
     fields.vy = [kx](double x) { return 1e-6 * std::cos(kx * x); };
     const double rate = shear_rate(kPhysics, k);

@@ -19,9 +19,7 @@ namespace {
 MdRunSpec small_cooling_gas(double t_end) {
   MdRunSpec spec;
   spec.scene = scene_from_particles(600, 0.05, 60.0, 0.9);
-  hydro::InitialParameters ip;
-  ip.type = "uniform";
-  spec.fields = hydro::make_initial_fields(ip, {});
+  spec.fields = hydro::uniform_fields();
   spec.t_end = t_end;
   spec.sample_interval = t_end / 10;
   spec.bins = 10;

@@ -89,9 +89,7 @@ TEST(ParticleEngineLammps, AnEnsembleSharesOneEngine) {
   const auto engine = make_particle_engine("lammps", setup);
   MdRunSpec spec;
   spec.scene = setup.scene;
-  hydro::InitialParameters ip;
-  ip.type = "uniform";
-  spec.fields = hydro::make_initial_fields(ip, {});
+  spec.fields = hydro::uniform_fields();
   spec.t_end = 2.0;
   spec.sample_interval = 1.0;
   spec.bins = 5;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "hydro/initial_conditions.hpp"
+#include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/particle_scene.hpp"
 
@@ -54,9 +54,7 @@ TEST(ParticleScene, ImpossibleScenesAreNamed) {
 
 TEST(ParticleSampler, UniformGasHasNoOverlapsAndTheRightTemperatureAndMomentum) {
   const ParticleScene s = scene_from_particles(4000, 0.2, 20.0, 0.9);
-  hydro::InitialParameters ip;
-  ip.type = "uniform";
-  const auto sample = sample_particles(s, hydro::make_initial_fields(ip, {}), 7);
+  const auto sample = sample_particles(s, hydro::uniform_fields(), 7);
   ASSERT_EQ(sample.count(), 4000);
   // Brute-force minimum distance (periodic).
   double min_d2 = 1e300;
@@ -82,11 +80,9 @@ TEST(ParticleSampler, UniformGasHasNoOverlapsAndTheRightTemperatureAndMomentum) 
 
 TEST(ParticleSampler, FollowsTheDensityAndVelocityProfile) {
   const ParticleScene s = scene_from_particles(20000, 0.05, 20.0, 0.9);
-  hydro::InitialParameters ip;
-  ip.type = "random_modes";
-  ip.random_modes = 3;
-  ip.random_amplitude = 0.2;
-  const auto f = hydro::make_initial_fields(ip, {});
+  const auto f =
+      hydro::find_initial_condition("random_modes")
+          .generate({{"random_modes", 3LL}, {"random_amplitude", 0.2}, {"seed", 1LL}}, {});
   const auto sample = sample_particles(s, f, 11);
   const int bins = 20;
   std::vector<double> count(bins, 0.0), vsum(bins, 0.0);
@@ -113,9 +109,7 @@ TEST(ParticleSampler, FollowsTheDensityAndVelocityProfile) {
 
 TEST(ParticleSampler, RefusesProfilesTooDenseToPlace) {
   const ParticleScene s = scene_from_particles(2000, 0.3, 10.0, 0.9);
-  hydro::InitialParameters ip;
-  ip.type = "uniform";
-  auto f = hydro::make_initial_fields(ip, {});
+  auto f = hydro::uniform_fields();
   f.n = [](double x) { return 1.0 + 0.9 * std::cos(2 * M_PI * x); };  // peak 1.9 x 0.3 > 0.5
   EXPECT_THROW(sample_particles(s, f, 1), std::invalid_argument);
 }
