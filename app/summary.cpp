@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/json_numbers.hpp"
+#include "hydro/initial_conditions.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::app {
@@ -138,8 +139,9 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["haff_max_relative_error"] = out.haff_max_relative_error;
   if (out.linear_rate) {
     const auto& r = *out.linear_rate;
-    h["linear_mode"] = {{"k", scene.initial.mode},
-                        {"branch", scene.initial.linear_branch},
+    const auto seeded = hydro::seeded_eigenmode(scene.initial);
+    h["linear_mode"] = {{"k", seeded ? json(seeded->mode) : json()},
+                        {"branch", seeded ? json(seeded->branch) : json()},
                         {"rate_theory", {r.theory.real(), r.theory.imag()}},
                         {"rate_measured", {r.measured.real(), r.measured.imag()}},
                         {"relative_error", r.relative_error},

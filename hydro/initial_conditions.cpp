@@ -36,10 +36,6 @@ InitialParameters initial_parameters(std::string type, ParameterSet values) {
   InitialParameters p;
   p.type = std::move(type);
   p.values = std::move(values);
-  if (const auto seeded = seeded_eigenmode(p)) {
-    p.mode = seeded->mode;
-    p.linear_branch = seeded->branch;
-  }
   return p;
 }
 

@@ -28,9 +28,6 @@ InitialFields uniform_fields();
 struct InitialParameters {
   std::string type;     // a registered initial condition (initial.type)
   ParameterSet values;  // every parameter of initial_parameter_specs(), by name
-  // The eigenmode (k, branch) a linear_mode scene seeds (seeded_eigenmode), kept as members
-  // only because app/summary.cpp reads them; 0 for other types.
-  int mode = 0, linear_branch = 0;
 };
 
 // A parameter that is outside what the generator can use, though within its per-key range.
@@ -53,7 +50,7 @@ struct SeededEigenmode {
   int branch;
 };
 
-// type and values, with the seeded eigenmode filled in. Throws std::invalid_argument for an
+// type and values. Throws std::invalid_argument for an
 // unknown type.
 InitialParameters initial_parameters(std::string type, ParameterSet values);
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics);
