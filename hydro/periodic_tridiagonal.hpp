@@ -1,9 +1,10 @@
 #pragma once
-// Symmetric periodic tridiagonal systems (the implicit viscous and conductive parts of
-// the Lagrangian scheme) solved by Eigen's sparse LDL^T. The sparsity pattern is fixed,
-// so it is analysed once and only the numeric factorisation is repeated.
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+// Symmetric positive-definite periodic tridiagonal systems (the implicit viscous and conductive
+// parts of the Lagrangian scheme) in O(N). The periodic corner couples unknowns n-1 and 0; it is
+// removed by a rank-one (Sherman-Morrison) correction, A = T - w w^T / gamma, where T is the plain
+// tridiagonal matrix A + w w^T / gamma with w = (gamma, 0, ..., 0, -c), c the corner entry and
+// gamma = A(0,0). T is then SPD whenever A is, so LAPACK's dpttrf/dpttrs (L D L^T of an SPD
+// tridiagonal matrix) factor and solve it; A is SPD exactly when T is and gamma - w^T T^-1 w > 0.
 #include <vector>
 
 namespace granvv::hydro {
@@ -21,14 +22,9 @@ class PeriodicTridiagonalSolver {
 
  private:
   int n_;
-  Eigen::SparseMatrix<double> matrix_;  // upper triangle only
-  std::vector<double*> diag_entry_, upper_entry_;
-  // Natural order: a periodic tridiagonal matrix fills in only its last column, so a
-  // fill-reducing permutation buys nothing; with the upper triangle stored column-major,
-  // Eigen factorises the matrix in place instead of copying it at every factorisation.
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
-      ldlt_;
-  Eigen::VectorXd rhs_, solution_;
+  std::vector<double> d_, e_;                              // L D L^T factors of T (dpttrf)
+  std::vector<double> z_;                                  // T^-1 w
+  double gamma_ = 0.0, corner_ = 0.0, denominator_ = 0.0;  // gamma, c, gamma - w^T T^-1 w
 };
 
 }  // namespace granvv::hydro
