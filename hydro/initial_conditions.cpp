@@ -33,6 +33,7 @@ const std::vector<ParameterSpec>& common_initial_parameters() {
 }
 
 InitialParameters initial_parameters(std::string type, ParameterSet values) {
+  find_initial_condition(type);  // an unknown type is refused here, not at first use
   InitialParameters p;
   p.type = std::move(type);
   p.values = std::move(values);
