@@ -1,4 +1,4 @@
-// Paper Eq. (8): n = T = 1, v = a sin(2 pi k x); its flow by inertia (paper Eq. 7) is exact.
+// Paper Eq. (7): n = T = 1, v = a sin(2 pi k x); its flow by inertia (paper Eq. 5) is exact.
 #include <cmath>
 
 #include "hydro/initial_condition_registry.hpp"

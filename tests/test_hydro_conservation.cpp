@@ -21,7 +21,7 @@ RunResult run_scene(const InitialParameters& ip, const Physics& p, int cells, do
 }
 
 TEST(HydroConservation, SingleModeConservesMassMomentumAndEnergyToRoundOff) {
-  const InitialParameters ip =  // paper Eq. (8), a = -0.05
+  const InitialParameters ip =  // paper Eq. (7), a = -0.05
       initial_parameters("single_mode", {{"velocity_amplitude", -0.05},
                                          {"mode", 1LL},
                                          {"transverse_amplitude", 0.0},

@@ -62,7 +62,7 @@ TEST(InitialConditionRegistry, UnknownTypeAndMistypedParameterThrow) {
   EXPECT_THROW(p.real("seed"), std::logic_error);
 }
 
-// Paper Eq. (8): v = a sin(2 pi k x); at x = 1/(4k) the sine is 1 exactly in floating point.
+// Paper Eq. (7): v = a sin(2 pi k x); at x = 1/(4k) the sine is 1 exactly in floating point.
 TEST(InitialConditionRegistry, SingleModeFieldsAndItsExactInertiaReference) {
   const auto p = initial_parameters(
       "single_mode", with_transverse({{"velocity_amplitude", -0.05}, {"mode", 2LL}}));

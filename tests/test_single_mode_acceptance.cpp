@@ -1,4 +1,4 @@
-// The paper's single-mode scene (Figs. 3-4, Eq. 8) from cases/single_mode.toml, run through
+// The paper's single-mode scene (Figs. 3-4, Eq. 7) from cases/single_mode.toml, run through
 // the same scene code as `granvv run`, against the flow-by-inertia predictions and for
 // convergence in the mesh.
 #include <gtest/gtest.h>
