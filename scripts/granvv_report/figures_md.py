@@ -308,7 +308,7 @@ def fig_md_energy(run):
         title='MD: coarse-grained fields',
         caption=('A homogeneous cooling state has n = n<sub>0</sub>, v = 0 and a uniform T that '
                  "follows Haff's law, as long as no mode is linearly unstable (clustering: πkK &lt; "
-                 '√q; docs/physics.md §4). In a particle run the fields carry thermal noise: on a '
+                 '√q; docs/physics.md §2). In a particle run the fields carry thermal noise: on a '
                  'scale ℓ the velocity noise is about (n<sub>0</sub>L<sub>y</sub>ℓ)<sup>−1/2</sup> '
                  '(docs/physics.md §8), i.e. (T/N<sub>b</sub>)<sup>1/2</sup> per bin (dotted lines), '
                  'reduced by √M with M seeds.'))
@@ -415,7 +415,7 @@ def fig_md_fields(run):
 
 @figure(file="md4_contact.png", section="md", anchor="md_contact",
         title='MD: contact model and adaptive stiffness',
-        caption=('docs/physics.md §4: linear spring–dashpot (LAMMPS gran/hooke, friction off), '
+        caption=('docs/physics.md §5: linear spring–dashpot (LAMMPS gran/hooke, friction off), '
                  'm<sub>eff</sub> = m/2, γ<sub>n</sub> = −2 ln r '
                  '(k<sub>n</sub>/m<sub>eff</sub>)<sup>1/2</sup>/(π<sup>2</sup> + ln<sup>2</sup> '
                  'r)<sup>1/2</sup>, contact time t<sub>c</sub> = π/(k<sub>n</sub>/m<sub>eff</sub> − '
