@@ -2,14 +2,16 @@
 
 #include <algorithm>
 
-#include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
 #include "app/md_output.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
 
+using h5::write_attribute;
+using h5::write_vector;
 using nlohmann::json;
 
 json numbers(const std::vector<double>& v) {
@@ -26,7 +28,15 @@ std::vector<double> flatten(const std::vector<std::vector<double>>& rows) {
 
 void write_rows(H5::Group& g, const std::string& name,
                 const std::vector<std::vector<double>>& rows) {
-  if (!rows.empty()) write_matrix(g, name, flatten(rows), rows.size());
+  if (!rows.empty()) h5::write_matrix(g, name, flatten(rows), rows.size());
+}
+
+// One column of a FieldSeries as rows over its snapshots.
+std::vector<std::vector<double>> column_rows(const fields::FieldSeries& series,
+                                             std::vector<double> fields::FieldSnapshot::*column) {
+  std::vector<std::vector<double>> rows;
+  for (const auto& s : series.snapshots) rows.push_back(s.*column);
+  return rows;
 }
 
 // The per-time metrics of a field, by the name both outputs use (summary.json, results.h5).
@@ -194,9 +204,10 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
   for (const auto& f : out.fields) {
     H5::Group fg = fields.createGroup(f.name);
     write_attribute(fg, "error_source", f.error_source);
-    write_rows(fg, "hydro", f.hydro);
-    write_rows(fg, "md", f.md);
-    write_rows(fg, "md_error", f.md_error);
+    const fields::FieldColumn& c = fields::field_column(f.name);
+    write_rows(fg, "hydro", column_rows(out.hydro_on_bins, c.values));
+    write_rows(fg, "md", column_rows(out.md_on_bins, c.values));
+    write_rows(fg, "md_error", column_rows(out.md_on_bins, c.standard_error));
     for (const auto& [name, metric] : kMetrics) write_vector(fg, name, per_time(f.track, metric));
   }
   H5::Group peak = h5.createGroup("/compare/peak");

@@ -10,6 +10,7 @@
 #include "compare/binned_energies.hpp"
 #include "compare/density_modes.hpp"
 #include "compare/ensemble_error_model.hpp"
+#include "compare/ensemble_fields.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/profile_measures.hpp"
 #include "compare/verdict.hpp"
@@ -25,77 +26,68 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // singularity itself its density is infinite in one bin (paper Eqs. 5-7).
 constexpr double kInertiaBeforeSingularity = 0.999;
 
-// One member's snapshot error model against the ensemble of a field: the error of the mean and
-// its source label (compare/ensemble_error_model.hpp).
-std::vector<double> mean_error(const std::vector<double>& model_one_member,
-                               const compare::EnsembleStatistics& stats, std::string& source) {
-  compare::EnsembleMeanError e = compare::ensemble_mean_error(model_one_member, stats);
-  source = compare::error_source_label(e);
-  return std::move(e.error);
+// The particles' ensemble mean of one snapshot in scaled units (n in n0; x, v and T are
+// already scaled in MD units, docs/physics.md §4), with the error of that mean for each compared
+// field: one member's snapshot error model calibrated by the ensemble
+// (compare/ensemble_error_model.hpp). Records each field's error source.
+fields::FieldSnapshot md_mean_scaled(const MdOutcome& md_out, std::size_t s, double n0,
+                                     std::vector<FieldComparison>& compared) {
+  const fields::FieldSnapshot& mean = md_out.fields.snapshots[s];
+  const fields::FieldSnapshot& first = md_out.runs.front().fields.snapshots[s];
+  std::vector<fields::FieldSeries> members;
+  for (const auto& run : md_out.runs) members.push_back(run.fields);
+  const int bins = static_cast<int>(mean.n.size());
+  fields::FieldSnapshot m;
+  m.t = mean.t, m.label = mean.label;
+  for (int b = 0; b < bins; ++b) {
+    m.n.push_back(mean.n[b] / n0);
+    // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
+    // ensemble calibration corrects the level), in MD units like the ensemble's.
+    m.n_stderr.push_back(mean.count[b] > 0 ? mean.n[b] / std::sqrt(mean.count[b]) : kNaN);
+  }
+  m.v_x = mean.v_x, m.v_y = mean.v_y, m.T = mean.T;
+  m.v_x_stderr = first.v_x_stderr, m.v_y_stderr = first.v_y_stderr, m.T_stderr = first.T_stderr;
+  m.count = mean.count;
+  for (auto& f : compared) {
+    const fields::FieldColumn& c = fields::field_column(f.name);
+    compare::EnsembleMeanError e = compare::ensemble_mean_error(
+        m.*c.standard_error, compare::column_statistics(members, s, c.values));
+    f.error_source = compare::error_source_label(e);
+    m.*c.standard_error = std::move(e.error);
+  }
+  for (double& e : m.n_stderr) e /= n0;
+  return m;
 }
 
-// Per field: the hydro on the bins against the MD mean and its error (scaled units), and their
-// difference at this output time.
-void compare_fields_at(std::vector<ComparedField>& fields, const compare::BinnedFields& hb,
-                       const EnsembleSnapshot* m, double n0, double sigmas) {
-  const int bins = static_cast<int>(hb.n.size());
-  // MD means in scaled units, and their errors.
-  std::vector<double> md_n, md_T, model_n, model_vx, model_vy, model_T;
-  for (int b = 0; b < bins; ++b) {
-    md_n.push_back(m->n.mean[b] / n0);
-    md_T.push_back(m->T.mean[b]);
-    const double count = m->count.mean[b];
-    // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
-    // ensemble calibration below corrects the level), in MD units like the ensemble's.
-    model_n.push_back(count > 0 ? m->n.mean[b] / std::sqrt(count) : kNaN);
-    model_vx.push_back(m->v_x_snapshot_error[b]);
-    model_vy.push_back(m->v_y_snapshot_error[b]);
-    model_T.push_back(m->T_snapshot_error[b]);
-  }
-  const double T_bar = compare::mass_weighted_mean(md_n, md_T);
-  for (auto& f : fields) {
-    std::vector<double> hv, mv, err;
-    double scale = 1.0;  // n: the mean density n0
-    if (f.name == "n") {
-      hv = hb.n, mv = md_n, err = mean_error(model_n, m->n, f.error_source);
-      for (double& e : err) e /= n0;
-    } else if (f.name == "v_x") {
-      hv = hb.v_x, mv = m->v_x.mean, err = mean_error(model_vx, m->v_x, f.error_source);
-      scale = std::sqrt(T_bar);  // the thermal speed at this time
-    } else if (f.name == "v_y") {
-      hv = hb.v_y, mv = m->v_y.mean, err = mean_error(model_vy, m->v_y, f.error_source);
-      scale = std::sqrt(T_bar);
-    } else {
-      hv = hb.T, mv = md_T, err = mean_error(model_T, m->T, f.error_source);
-      scale = T_bar;  // the mean temperature at this time
-    }
-    f.track.at.push_back(compare::field_difference(hv, mv, err, scale, sigmas));
-    f.hydro.push_back(hv), f.md.push_back(mv), f.md_error.push_back(err);
+// Per field: the hydro on the bins against the particles' mean and its error, at one time.
+void compare_fields_at(std::vector<FieldComparison>& compared, const fields::FieldSnapshot& hb,
+                       const fields::FieldSnapshot& md, double sigmas) {
+  const double T_bar = compare::mass_weighted_mean(md.n, md.T);
+  for (auto& f : compared) {
+    const fields::FieldColumn& c = fields::field_column(f.name);
+    // The scale of the differences: n0 for n, the thermal speed for v, the mean T for T.
+    const double scale = f.name == "n" ? 1.0 : f.name == "T" ? T_bar : std::sqrt(T_bar);
+    f.track.at.push_back(
+        compare::field_difference(hb.*c.values, md.*c.values, md.*c.standard_error, scale, sigmas));
   }
 }
 
 // Peak density, |dv/dx| at the peak and the energies per particle, both engines on the bins.
-void record_peak_and_energies(CompareOutcome& out, const compare::BinnedFields& hb,
-                              const EnsembleSnapshot* m, double n0, int members) {
-  const int bins = static_cast<int>(hb.n.size());
-  compare::BinnedFields md_mean;
-  for (int b = 0; b < bins; ++b) {
-    md_mean.n.push_back(m->n.mean[b] / n0), md_mean.T.push_back(m->T.mean[b]);
-  }
-  md_mean.v_x = m->v_x.mean, md_mean.v_y = m->v_y.mean;
-  const std::size_t hp = compare::peak_bin(hb.n), mp = compare::peak_bin(md_mean.n);
+void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& hb,
+                              const fields::FieldSnapshot& md, int members) {
+  const std::size_t hp = compare::peak_bin(hb.n), mp = compare::peak_bin(md.n);
   out.hydro_n_peak.push_back(hb.n[hp]);
-  out.md_n_peak.push_back(md_mean.n[mp]);
-  out.md_n_peak_error.push_back(out.fields.front().md_error.back()[mp]);
+  out.md_n_peak.push_back(md.n[mp]);
+  out.md_n_peak_error.push_back(md.n_stderr[mp]);
   out.hydro_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(hb.v_x, hp)));
-  out.md_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(md_mean.v_x, mp)));
+  out.md_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(md.v_x, mp)));
   const compare::EnergiesPerParticle hydro = compare::box_energies(hb);
-  const compare::EnergiesPerParticle md =
-      compare::noise_corrected_energies(md_mean, m->count.mean, members);
+  const compare::EnergiesPerParticle particles =
+      compare::noise_corrected_energies(md, md.count, members);
   out.hydro_energy_thermal.push_back(hydro.thermal);
   out.hydro_energy_kinetic.push_back(hydro.flow);
-  out.md_energy_thermal.push_back(md.thermal);
-  out.md_energy_kinetic.push_back(md.flow);
+  out.md_energy_thermal.push_back(particles.thermal);
+  out.md_energy_kinetic.push_back(particles.flow);
 }
 
 // Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
@@ -104,15 +96,15 @@ void record_peak_and_energies(CompareOutcome& out, const compare::BinnedFields& 
 // (hydro/linear_stability.hpp), rms over members.
 void compare_density_modes(
     CompareOutcome& out, int modes, const hydro::Physics& physics, const MdOutcome& md_out,
-    const std::vector<std::pair<const EnsembleSnapshot*, const hydro::LagrangianState*>>& pairs,
-    double n0, int bins) {
+    const std::vector<std::pair<std::size_t, const hydro::LagrangianState*>>& pairs, double n0,
+    int bins) {
   const int members = static_cast<int>(md_out.runs.size());
   for (int k = 1; k <= modes; ++k) {
     out.theory_rate.push_back(hydro::hcs_modes(physics, k)[0].rate.real());
   }
   std::vector<std::vector<Eigen::Vector3cd>> initial(members);
   for (int r = 0; r < members; ++r) {
-    const auto& f = md_out.runs[r].snapshots.front().fields;
+    const auto& f = md_out.runs[r].fields.snapshots.front();
     for (int k = 1; k <= modes; ++k) {
       initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
     }
@@ -120,16 +112,16 @@ void compare_density_modes(
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const auto hb = compare::bin_lagrangian_state(*pairs[i].second, bins);
     std::vector<double> hydro_row, md_row, md_err, theory_row;
-    const std::size_t s_index = pairs[i].first - md_out.snapshots.data();
+    const std::size_t s_index = pairs[i].first;
     for (int k = 1; k <= modes; ++k) {
       hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
       std::vector<std::vector<double>> power;  // one |n_k|^2 per member
       double theory2 = 0.0;
       for (int r = 0; r < members; ++r) {
-        const auto& snaps = md_out.runs[r].snapshots;
+        const auto& snaps = md_out.runs[r].fields.snapshots;
         if (s_index >= snaps.size()) continue;
         std::vector<double> relative;
-        for (double n : snaps[s_index].fields.n) relative.push_back(n / n0);
+        for (double n : snaps[s_index].n) relative.push_back(n / n0);
         power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
         const Eigen::Vector3cd evolved =
             hydro::hcs_linear_evolution(physics, k, initial[r][k - 1], out.collision_clock[i]);
@@ -154,11 +146,10 @@ void compare_density_modes(
 void write_verdict(CompareOutcome& out, const CompareScene& scene) {
   if (!out.window.throughout && out.window.left_at) {
     const auto k = std::find(out.t.begin(), out.t.end(), *out.window.left_at) - out.t.begin();
-    for (const auto& f : out.fields) {
-      if (f.name == out.window.first_out) {
-        out.offset_sigmas = compare::box_mean_offset(f.hydro[k], f.md[k], f.md_error[k]);
-      }
-    }
+    const fields::FieldColumn& c = fields::field_column(out.window.first_out);
+    const fields::FieldSnapshot &h = out.hydro_on_bins.snapshots[k],
+                                &m = out.md_on_bins.snapshots[k];
+    out.offset_sigmas = compare::box_mean_offset(h.*c.values, m.*c.values, m.*c.standard_error);
   }
   const compare::Disagreement kind = compare::classify_disagreement(
       out.window.throughout, out.signal_to_noise, out.offset_sigmas, scene.verdict_rule);
@@ -194,12 +185,12 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
 }
 
 void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
-                         const std::vector<EnsembleSnapshot>& md_snapshots) {
+                         const fields::FieldSeries& md_fields) {
   hydro.physics = scene.physics();
   auto& ctl = hydro.control;
   ctl.t_end = scene.scaled_time(md_t_end);
   ctl.output_times.clear();
-  for (const auto& s : md_snapshots) {
+  for (const auto& s : md_fields.snapshots) {
     const double t = scene.scaled_time(s.t);
     if (t > 0.0 && (ctl.output_times.empty() || t > ctl.output_times.back())) {
       ctl.output_times.push_back(t);
@@ -208,12 +199,12 @@ void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, doub
   if (!ctl.output_times.empty()) ctl.t_end = std::max(ctl.t_end, ctl.output_times.back());
 }
 
-hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& s,
+hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& s,
                                           const md::ParticleScene& scene) {
   const double n0 = scene.number_density();
   std::vector<double> n, vx, vy, T;
   for (std::size_t b = 0; b < s.x.size(); ++b) {
-    const double values[] = {s.n.mean[b], s.v_x.mean[b], s.v_y.mean[b], s.T.mean[b]};
+    const double values[] = {s.n[b], s.v_x[b], s.v_y[b], s.T[b]};
     for (double v : values) {
       if (!std::isfinite(v)) {
         throw std::runtime_error("the MD's coarse-grained fields at t = " + std::to_string(s.t) +
@@ -222,8 +213,8 @@ hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& s,
                                  "from them");
       }
     }
-    n.push_back(s.n.mean[b] / n0), vx.push_back(s.v_x.mean[b]), vy.push_back(s.v_y.mean[b]);
-    T.push_back(s.T.mean[b]);
+    n.push_back(s.n[b] / n0), vx.push_back(s.v_x[b]), vy.push_back(s.v_y[b]);
+    T.push_back(s.T[b]);
   }
   hydro::InitialFields f;
   f.n = compare::bin_interpolant(n);
@@ -245,12 +236,12 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
 
   // The output times both engines reached: each MD snapshot against the hydro snapshot taken
   // at the same scaled time.
-  std::vector<std::pair<const EnsembleSnapshot*, const hydro::LagrangianState*>> pairs;
-  for (const auto& m : md_out.snapshots) {
-    const double t = sc.scaled_time(m.t);
+  std::vector<std::pair<std::size_t, const hydro::LagrangianState*>> pairs;
+  for (std::size_t k = 0; k < md_out.fields.snapshots.size(); ++k) {
+    const double t = sc.scaled_time(md_out.fields.snapshots[k].t);
     for (const auto& h : hydro_out.run.snapshots) {
       if (std::abs(h.state.t - t) <= 1e-9 * std::max(1.0, t)) {
-        pairs.emplace_back(&m, &h.state);
+        pairs.emplace_back(k, &h.state);
         break;
       }
     }
@@ -259,11 +250,12 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   std::vector<std::string> names = {"n", "v_x", "T"};
   if (hydro.transverse) names.insert(names.begin() + 2, "v_y");
   for (const auto& name : names) {
-    ComparedField f;
+    FieldComparison f;
     f.name = name;
     f.track.field = name;
     out.fields.push_back(std::move(f));
   }
+  out.hydro_on_bins = out.md_on_bins = fields::FieldSeries::on_bins(-0.5, 1.0, bins);
 
   const hydro::InitialFields case_fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
   const auto inertia_reference = hydro::inertia_reference(hydro.initial);
@@ -271,12 +263,17 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   const double inertia_tau = smooth ? inertia_reference->flow.singularity_time() : kNaN;
   const double t0 = hydro::haff_time_scale(hydro.physics);
 
-  for (const auto& [m, h] : pairs) {
-    const double t = sc.scaled_time(m->t);
+  for (const auto& [k, h] : pairs) {
+    const double t = sc.scaled_time(md_out.fields.snapshots[k].t);
     out.t.push_back(t);
-    const compare::BinnedFields hb = compare::bin_lagrangian_state(*h, bins);
-    compare_fields_at(out.fields, hb, m, n0, scene.sigmas);
-    record_peak_and_energies(out, hb, m, n0, members);
+    fields::FieldSnapshot hb = compare::bin_lagrangian_state(*h, bins);
+    hb.t = t, hb.label = "output";
+    fields::FieldSnapshot md_mean = md_mean_scaled(md_out, k, n0, out.fields);
+    md_mean.t = t, md_mean.x = hb.x;
+    compare_fields_at(out.fields, hb, md_mean, scene.sigmas);
+    record_peak_and_energies(out, hb, md_mean, members);
+    out.hydro_on_bins.snapshots.push_back(std::move(hb));
+    out.md_on_bins.snapshots.push_back(std::move(md_mean));
     // Flow by inertia on the same bins, before its singularity.
     if (smooth && t < kInertiaBeforeSingularity * inertia_tau) {
       const auto inertia = compare::bin_lagrangian_state(

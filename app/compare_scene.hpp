@@ -32,25 +32,28 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& config);
 // time, and snapshots at their actual snapshot times (which land on MD steps), all in scaled
 // units.
 void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
-                         const std::vector<EnsembleSnapshot>& md_snapshots);
+                         const fields::FieldSeries& md_fields);
 
 // Continuous fields through the ensemble-mean bin values of one MD snapshot (scaled units),
 // periodic and piecewise linear between bin centres.
-hydro::InitialFields fields_from_snapshot(const EnsembleSnapshot& snapshot,
+hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& snapshot,
                                           const md::ParticleScene& scene);
 
-// One compared field over the output times (rows) and bins (columns), scaled units.
-struct ComparedField {
+// The comparison of one field over the output times.
+struct FieldComparison {
   std::string name;  // "n", "v_x", "v_y", "T"
-  std::vector<std::vector<double>> hydro, md, md_error;
   compare::FieldTrack track;
-  std::string error_source;  // "ensemble" or "snapshot" (a single member)
+  std::string error_source;  // compare::error_source_label: ensemble-calibrated or one snapshot
 };
 
 struct CompareOutcome {
   std::vector<double> t;  // scaled output times both engines reached
   std::vector<double> x;  // bin centres, scaled
-  std::vector<ComparedField> fields;
+  // Both sides on the particles' bins at the times t, scaled units: the hydro binned like the
+  // particles (compare/binned_fields.hpp), and the particles' ensemble mean with the error of
+  // that mean (compare/ensemble_error_model.hpp) as its *_stderr.
+  fields::FieldSeries hydro_on_bins, md_on_bins;
+  std::vector<FieldComparison> fields;
   compare::AgreementWindow window;
   // Per output time, from the binned fields of both sides (per particle, scaled units):
   // peak density, |dv/dx| at the peak (centred difference on the bins), thermal and flow energy

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "hydro/blowup_extrapolation.hpp"
+#include "hydro/cell_fields.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/haff_deviation.hpp"
@@ -86,6 +87,7 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
       *closure, hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse),
       scene.control, progress);
   const auto& run = out.run;
+  out.cell_fields = hydro::cell_field_series(run.snapshots);
 
   // Paper Fig. 3: flow by inertia from the initial velocity profile.
   const auto inertia = hydro::inertia_reference(scene.initial);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/case_config.hpp"
+#include "fields/field_series.hpp"
 #include "hydro/convergence_study.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/initial_conditions.hpp"
@@ -47,6 +48,7 @@ struct SnapshotCheck {
 
 struct HydroOutcome {
   hydro::RunResult run;
+  fields::FieldSeries cell_fields;  // the snapshots on the hydro's cells (hydro/cell_fields.hpp)
   hydro::InitialFields fields;
   std::vector<SnapshotCheck> snapshots;
   std::optional<hydro::SingularityFit> singularity;

@@ -4,31 +4,22 @@
 #include <cmath>
 #include <variant>
 
-#include "app/hdf5_datasets.hpp"
 #include "app/json_numbers.hpp"
+#include "fields/field_series_file.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {
 
+using h5::write_attribute;
+using h5::write_matrix;
+using h5::write_vector;
 using nlohmann::json;
 
 // Acceptance of a particle run's cooling: the fitted Haff time lies within 3 % of kinetic theory
 // with the Enskog chi(phi) (docs/physics.md §4).
 constexpr double kHaffT0Tolerance = 0.03;
-
-// One field of every snapshot as a (snapshots x bins) matrix: mean and standard error.
-void write_ensemble_field(H5::Group& g, const std::string& name, const MdOutcome& out,
-                          compare::EnsembleStatistics EnsembleSnapshot::*field) {
-  std::vector<double> mean, err;
-  for (const auto& s : out.snapshots) {
-    const auto& f = s.*field;
-    mean.insert(mean.end(), f.mean.begin(), f.mean.end());
-    err.insert(err.end(), f.standard_error.begin(), f.standard_error.end());
-  }
-  write_matrix(g, name, mean, out.snapshots.size());
-  write_matrix(g, name + "_stderr", err, out.snapshots.size());
-}
 
 // The engine's own results at their dotted keys ("contact_initial.kn" -> {"contact_initial":
 // {"kn": ...}}).
@@ -56,7 +47,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   long long steps = 0;
   for (const auto& run : out.runs) steps += run.steps;
   json snaps = json::array();
-  for (const auto& s : out.runs.front().snapshots) snaps.push_back(s.t);
+  for (const auto& s : out.runs.front().fields.snapshots) snaps.push_back(s.t);
   const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
   const double t0_paper = sc.md_time(hydro::haff_time_scale(physics));
   json block = {
@@ -163,17 +154,7 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   write_vector(ts, "haff_theory_dilute", dilute);
 
   H5::Group fields = h5.createGroup("/md/fields");
-  std::vector<double> times;
-  for (const auto& s : out.snapshots) times.push_back(s.t);
-  write_vector(fields, "t", times);
-  if (!times.empty()) {
-    write_vector(fields, "x", out.snapshots.front().x);
-    write_ensemble_field(fields, "n", out, &EnsembleSnapshot::n);
-    write_ensemble_field(fields, "v_x", out, &EnsembleSnapshot::v_x);
-    write_ensemble_field(fields, "v_y", out, &EnsembleSnapshot::v_y);
-    write_ensemble_field(fields, "T", out, &EnsembleSnapshot::T);
-    write_ensemble_field(fields, "count", out, &EnsembleSnapshot::count);
-  }
+  fields::write_field_series(fields, out.fields);
 }
 
 }  // namespace granvv::app

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "compare/ensemble_fields.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
 
@@ -114,37 +115,6 @@ std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std:
   return md::make_particle_engine(scene.engine, setup);
 }
 
-namespace {
-
-std::vector<EnsembleSnapshot> ensemble_snapshots(const std::vector<md::MdRunResult>& runs) {
-  std::vector<EnsembleSnapshot> out;
-  const auto& first = runs.front().snapshots;
-  for (std::size_t s = 0; s < first.size(); ++s) {
-    auto stats = [&](std::vector<double> md::FieldProfile::*field) {
-      std::vector<std::vector<double>> members;
-      for (const auto& run : runs) {
-        if (s < run.snapshots.size()) members.push_back(run.snapshots[s].fields.*field);
-      }
-      return compare::ensemble_statistics(members);
-    };
-    EnsembleSnapshot e;
-    e.t = first[s].t;
-    e.x = first[s].fields.x;
-    e.n = stats(&md::FieldProfile::n);
-    e.v_x = stats(&md::FieldProfile::v_x);
-    e.v_y = stats(&md::FieldProfile::v_y);
-    e.T = stats(&md::FieldProfile::T);
-    e.count = stats(&md::FieldProfile::count);
-    e.v_x_snapshot_error = first[s].fields.v_x_stderr;
-    e.v_y_snapshot_error = first[s].fields.v_y_stderr;
-    e.T_snapshot_error = first[s].fields.T_stderr;
-    out.push_back(std::move(e));
-  }
-  return out;
-}
-
-}  // namespace
-
 MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
                        const std::function<void(int, const md::MdProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -183,7 +153,9 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
   out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
   out.T = compare::ensemble_statistics(Ts);
-  out.snapshots = ensemble_snapshots(out.runs);
+  std::vector<fields::FieldSeries> members;
+  for (const auto& run : out.runs) members.push_back(run.fields);
+  out.fields = compare::ensemble_field_series(members);
   out.cost = engine.cost();
   out.engine_details = engine.details();
   out.wall_seconds =

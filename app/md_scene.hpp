@@ -33,15 +33,6 @@ std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene&
 // The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
 std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir);
 
-// The coarse-grained fields of one snapshot over the ensemble (MD units): mean and standard
-// error over the members (NaN with one member), and member 0's own single-snapshot errors.
-struct EnsembleSnapshot {
-  double t = 0.0;
-  std::vector<double> x;
-  compare::EnsembleStatistics n, v_x, v_y, T, count;
-  std::vector<double> v_x_snapshot_error, v_y_snapshot_error, T_snapshot_error;
-};
-
 // docs/physics.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
 // (n0 Ly l)^{-1/2} sqrt(T0/m), against the imposed signal, the largest initial flow speed.
 struct SignalToNoise {
@@ -59,9 +50,10 @@ struct MdOutcome {
   double wall_seconds = 0.0;
   md::EngineCost cost;  // over every member
   md::EngineDetails engine_details;
-  // Ensemble statistics of the temperature series (run 0's sample times) and of the fields.
+  // Ensemble statistics of the temperature series (run 0's sample times), and the fields over
+  // the ensemble (compare/ensemble_fields.hpp; each member's own are in runs[m].fields).
   compare::EnsembleStatistics T;
-  std::vector<EnsembleSnapshot> snapshots;
+  fields::FieldSeries fields;
 };
 
 // Throws std::runtime_error if the restitution the engine's collision rule really has misses

@@ -5,13 +5,18 @@
 #include <cmath>
 #include <limits>
 
-#include "app/hdf5_datasets.hpp"
+#include "fields/field_series_file.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
 #include "hydro/time_series.hpp"
 
 namespace granvv::app {
 namespace {
+
+using h5::write_attribute;
+using h5::write_matrix;
+using h5::write_vector;
 
 // One dataset per column of hydro/time_series.hpp, in its order.
 void write_time_series(H5::Group g, const hydro::TimeSeries& ts) {
@@ -20,43 +25,23 @@ void write_time_series(H5::Group g, const hydro::TimeSeries& ts) {
   }
 }
 
-// The FieldSeries (cell centres; v averaged from the two nodes) and the Lagrangian arrays.
-void write_snapshots(H5::Group fields, H5::Group lagrangian, const HydroOutcome& out) {
+// The hydro's native Lagrangian arrays of its snapshots.
+void write_lagrangian(H5::Group g, const HydroOutcome& out) {
   const auto& snaps = out.run.snapshots;
   const hsize_t rows = snaps.size();
-  std::vector<double> t, x, n, vx, vy, T, node_x, node_v, xi, v0;
-  std::vector<std::string> labels;
-  const bool transverse = snaps.front().state.has_transverse();
+  std::vector<double> node_x, node_v, xi, v0;
   for (size_t k = 0; k < snaps.size(); ++k) {
     const auto& s = snaps[k].state;
-    const int cells = s.cells();
-    t.push_back(s.t);
-    labels.push_back(snaps[k].label);
-    for (int i = 0; i < cells; ++i) {
-      const int r = (i + 1) % cells;
-      x.push_back(hydro::cell_centre(s, i));
-      n.push_back(s.cell_mass[i] / hydro::cell_width(s, i));
-      T.push_back(s.cell_T[i]);
-      vx.push_back(0.5 * (s.node_v[i] + s.node_v[r]));
-      if (transverse) vy.push_back(0.5 * (s.node_vy[i] + s.node_vy[r]));
-      node_x.push_back(s.node_x[i]);
-      node_v.push_back(s.node_v[i]);
-    }
+    node_x.insert(node_x.end(), s.node_x.begin(), s.node_x.end());
+    node_v.insert(node_v.end(), s.node_v.begin(), s.node_v.end());
     xi.insert(xi.end(), out.snapshots[k].xi.begin(), out.snapshots[k].xi.end());
     v0.insert(v0.end(), out.snapshots[k].inertia_v0.begin(), out.snapshots[k].inertia_v0.end());
   }
-  write_vector(fields, "t", t);
-  write_strings(fields, "label", labels);
-  write_matrix(fields, "x", x, rows);
-  write_matrix(fields, "n", n, rows);
-  write_matrix(fields, "v_x", vx, rows);
-  if (transverse) write_matrix(fields, "v_y", vy, rows);
-  write_matrix(fields, "T", T, rows);
-  write_matrix(lagrangian, "node_x", node_x, rows);
-  write_matrix(lagrangian, "node_v_x", node_v, rows);
-  write_matrix(lagrangian, "xi", xi, rows);
-  write_matrix(lagrangian, "inertia_v0", v0, rows);
-  write_vector(lagrangian, "cell_mass", snaps.front().state.cell_mass);
+  write_matrix(g, "node_x", node_x, rows);
+  write_matrix(g, "node_v_x", node_v, rows);
+  write_matrix(g, "xi", xi, rows);
+  write_matrix(g, "inertia_v0", v0, rows);
+  write_vector(g, "cell_mass", snaps.front().state.cell_mass);
 }
 
 void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out) {
@@ -109,7 +94,9 @@ void write_results_file(const std::filesystem::path& file, const RunMetadata& me
 
   H5::Group hydro_group = h5.createGroup("/hydro");
   write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series);
-  write_snapshots(h5.createGroup("/hydro/fields"), h5.createGroup("/hydro/lagrangian"), out);
+  H5::Group fields = h5.createGroup("/hydro/fields");
+  fields::write_field_series(fields, out.cell_fields);
+  write_lagrangian(h5.createGroup("/hydro/lagrangian"), out);
   write_theory(h5.createGroup("/hydro/theory"), scene, out);
   if (out.convergence) write_convergence(h5.createGroup("/hydro/convergence"), *out.convergence);
 }

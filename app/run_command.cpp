@@ -190,14 +190,14 @@ int run_command(const RunOptions& options) {
       md = run_particle_engine();
       const auto& sc = md_scene->spec.scene;
       if (compare_scene->hydro_from_md) {
-        scene.given_fields = fields_from_snapshot(md->snapshots.front(), sc);
+        scene.given_fields = fields_from_snapshot(md->fields.snapshots.front(), sc);
         log->info(
             "hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
             "members)",
             md_scene->spec.bins, md->runs.size());
       }
       const hydro::Physics given = scene.physics;
-      align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->snapshots);
+      align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->fields);
       log->info(
           "hydro: K = {:.6g}, q = {:.6g} from the particle scene (case: physics.K = {:.6g}, "
           "physics.q = {:.6g})",

@@ -4,7 +4,7 @@
 
 namespace granvv::compare {
 
-EnergiesPerParticle box_energies(const BinnedFields& f) {
+EnergiesPerParticle box_energies(const fields::FieldSnapshot& f) {
   const std::size_t bins = f.n.size();
   EnergiesPerParticle e;
   for (std::size_t b = 0; b < bins; ++b) {
@@ -15,7 +15,7 @@ EnergiesPerParticle box_energies(const BinnedFields& f) {
   return e;
 }
 
-EnergiesPerParticle noise_corrected_energies(const BinnedFields& f,
+EnergiesPerParticle noise_corrected_energies(const fields::FieldSnapshot& f,
                                              const std::vector<double>& count_per_member,
                                              int members) {
   const std::size_t bins = f.n.size();

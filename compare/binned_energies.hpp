@@ -22,12 +22,12 @@ struct EnergiesPerParticle {
 
 // The hydro on the bins (bin_lagrangian_state): box integrals with dx = 1 / bins. The hydro's
 // mass is 1 in scaled units, so they are already per particle; no bin is skipped.
-EnergiesPerParticle box_energies(const BinnedFields& hydro);
+EnergiesPerParticle box_energies(const fields::FieldSnapshot& hydro);
 
 // The particles' ensemble means on the bins, with the sampling noise 2 T_b / (N_b k) removed
 // from the flow energy (none where count_per_member_b = 0). Bins where v_x or T is not finite
 // (empty) are left out, and both energies are divided by the mass sum n dx of the bins kept.
-EnergiesPerParticle noise_corrected_energies(const BinnedFields& md_mean,
+EnergiesPerParticle noise_corrected_energies(const fields::FieldSnapshot& md_mean,
                                              const std::vector<double>& count_per_member,
                                              int members);
 

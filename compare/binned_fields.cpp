@@ -5,7 +5,7 @@
 
 namespace granvv::compare {
 
-BinnedFields bin_lagrangian_state(const hydro::LagrangianState& s, int bins) {
+fields::FieldSnapshot bin_lagrangian_state(const hydro::LagrangianState& s, int bins) {
   if (bins < 1) throw std::invalid_argument("bin_lagrangian_state: bins must be >= 1");
   const int cells = s.cells();
   if (cells < 1) throw std::invalid_argument("bin_lagrangian_state: the state has no cells");
@@ -40,7 +40,7 @@ BinnedFields bin_lagrangian_state(const hydro::LagrangianState& s, int bins) {
       lo = hi;
     }
   }
-  BinnedFields f;
+  fields::FieldSnapshot f;
   const double dx = 1.0 / bins;
   for (int b = 0; b < bins; ++b) {
     f.x.push_back(-0.5 + (b + 0.5) * dx);

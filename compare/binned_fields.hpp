@@ -13,19 +13,17 @@
 #include <functional>
 #include <vector>
 
+#include "fields/field_series.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/lagrangian_state.hpp"
 
 namespace granvv::compare {
 
-// Fields on `bins` equal bins of [-1/2, 1/2), values at the bin centres x. v_y is zero when the
-// state carries no transverse velocity.
-struct BinnedFields {
-  std::vector<double> x, n, v_x, v_y, T;
-};
-
+// Fields on `bins` equal bins of [-1/2, 1/2): x, n, v_x, v_y and T at the bin centres (t and
+// label are left to the caller, no standard errors). v_y is zero when the state carries no
+// transverse velocity.
 // Throws std::invalid_argument if bins < 1 or the state has no cells.
-BinnedFields bin_lagrangian_state(const hydro::LagrangianState& state, int bins);
+fields::FieldSnapshot bin_lagrangian_state(const hydro::LagrangianState& state, int bins);
 
 // The other way: a continuous, 1-periodic function through values at the bin centres,
 // piecewise linear between them (a bin's mean is kept to second order in the bin width).

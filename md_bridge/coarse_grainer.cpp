@@ -207,16 +207,16 @@ Moments CoarseGrainer::accumulate(const double* x, const double* v, const double
   return m;
 }
 
-FieldProfile CoarseGrainer::fields(const Moments& m) const {
+fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
   if (m.bins() != grid_.bins) {
     throw std::invalid_argument("coarse-graining: moments of " + std::to_string(m.bins()) +
                                 " bins for a grid of " + std::to_string(grid_.bins));
   }
   const int bins = grid_.bins;
-  FieldProfile f;
+  fields::FieldSnapshot f;
   f.x = bin_centres();
-  for (auto* a : {&f.n, &f.v_x, &f.v_y, &f.T, &f.count, &f.n_eff, &f.v_x_stderr, &f.v_y_stderr,
-                  &f.T_stderr}) {
+  for (auto* a :
+       {&f.n, &f.v_x, &f.v_y, &f.T, &f.count, &f.v_x_stderr, &f.v_y_stderr, &f.T_stderr}) {
     a->assign(bins, kNaN);
   }
   const double area = dx_ * grid_.Ly;
@@ -226,7 +226,7 @@ FieldProfile CoarseGrainer::fields(const Moments& m) const {
     f.count[i] = W;
     f.n[i] = W / area;
     if (!(W > 0.0 && U > 0.0)) continue;
-    f.n_eff[i] = W * W / m.weight2[i];
+    const double n_eff = W * W / m.weight2[i];
     f.v_x[i] = m.px[i] / U;
     f.v_y[i] = m.py[i] / U;
     // Unbiased temperature (see the header): D = W - sum w^2 m / U is W (1 - 1/N_eff) for
@@ -241,7 +241,7 @@ FieldProfile CoarseGrainer::fields(const Moments& m) const {
     // For Gaussian velocities sum w m |c - v|^2 has relative variance 1/N_eff about its mean
     // (2 components, each a chi^2); removing the mean costs one effective particle, exactly so
     // for bins (chi^2 with 2 (N_b - 1) degrees of freedom: Var T = T^2 / (N_b - 1)).
-    if (f.n_eff[i] > 1.0) f.T_stderr[i] = T / std::sqrt(f.n_eff[i] - 1.0);
+    if (n_eff > 1.0) f.T_stderr[i] = T / std::sqrt(n_eff - 1.0);
   }
   return f;
 }

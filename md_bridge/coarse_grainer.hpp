@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "fields/field_series.hpp"
+
 namespace granvv::md {
 
 // Geometry and kernel. Fields live at the bin centres x_lo + (i + 1/2) Lx/bins.
@@ -64,25 +66,18 @@ struct Moments {
   std::vector<const std::vector<double>*> arrays() const;
 };
 
-// One snapshot of the fields at the bin centres. Quantities that a bin cannot define are
-// quiet NaN: v where the bin holds no weight, T and every standard error where fewer than two
-// particles contribute (N_eff <= 1).
-// Standard errors are those of one snapshot, from the local T and N_eff, assuming independent
-// particles with Maxwellian (Gaussian) velocity fluctuations about v(x):
+// One snapshot of the fields is a fields::FieldSnapshot at the bin centres (t and label left
+// to the caller), with count = sum of weights (the particles of the bin, kernel-weighted).
+// Quantities that a bin cannot define are quiet NaN: v where the bin holds no weight, T and
+// every standard error where fewer than two particles contribute (N_eff = (sum w)^2 / sum w^2
+// <= 1). Standard errors are those of one snapshot, from the local T and N_eff, assuming
+// independent particles with Maxwellian (Gaussian) velocity fluctuations about v(x):
 //   v_x_stderr = v_y_stderr = sqrt(T sum w^2 m) / sum w m    (= sqrt(T / (m N_b)) for bins),
 //   T_stderr   = T / sqrt(N_eff - 1)                          (exact for bins: 2(N_b - 1)
 //                                                              degrees of freedom, chi^2).
-// n has none: its snapshot variance is set by the static structure factor of the gas, not by
-// the sample itself (Poisson only for an ideal gas); an ensemble over seeds measures it.
-struct FieldProfile {
-  std::vector<double> x;  // bin centres
-  std::vector<double> n;  // number density, particles per unit area
-  std::vector<double> v_x, v_y;
-  std::vector<double> T;      // granular temperature, unbiased (see CoarseGrainer::fields)
-  std::vector<double> count;  // sum of weights: particles of the bin (kernel-weighted)
-  std::vector<double> n_eff;  // effective count (sum w)^2 / sum w^2
-  std::vector<double> v_x_stderr, v_y_stderr, T_stderr;
-};
+// n has none (n_stderr is empty): its snapshot variance is set by the static structure factor
+// of the gas, not by the sample itself (Poisson only for an ideal gas); an ensemble over seeds
+// measures it.
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because
@@ -139,7 +134,7 @@ class CoarseGrainer {
   // the Bessel correction, where the naive 1/(2 N_b) is low by the factor (N_b - 1)/N_b.
   // The fluctuation sum is formed as mv2 - |p|^2 / mass: its relative round-off is about
   // eps (1 + m |v|^2 / 2T), harmless unless the flow is 10^6 times the thermal speed.
-  FieldProfile fields(const Moments& m) const;
+  fields::FieldSnapshot fields(const Moments& m) const;
   BoxEnergies energies(const Moments& m) const;
 
  private:

@@ -33,6 +33,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   CoarseGrainer grainer({-0.5 * lx, lx, -0.5 * ly, ly, spec.bins, spec.kernel, spec.kernel_width});
 
   MdRunResult result;
+  result.fields = fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins);
   engine.set_up(sample);
   int rank = 0;
   MPI_Comm_rank(engine.comm(), &rank);
@@ -75,7 +76,12 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
       for (const auto& [name, value] : own) s.engine.push_back({name, {}});
     }
     for (std::size_t i = 0; i < own.size(); ++i) s.engine[i].second.push_back(own[i].second);
-    if (snapshot) result.snapshots.push_back({t, grainer.fields(m)});
+    if (snapshot) {
+      fields::FieldSnapshot f = grainer.fields(m);
+      f.t = t;
+      f.label = "output";
+      result.fields.snapshots.push_back(std::move(f));
+    }
     if (h5md) {
       h5md->append_observable("thermal_energy", result.steps, t, e.thermal);
       h5md->append_observable("kinetic_energy_x", result.steps, t, e.kinetic_macro_x);

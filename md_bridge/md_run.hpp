@@ -44,11 +44,6 @@ struct MdSeries {
   std::vector<std::pair<std::string, std::vector<double>>> engine;
 };
 
-struct MdSnapshot {
-  double t = 0.0;
-  FieldProfile fields;
-};
-
 struct MdProgress {
   double t, t_end, T, wall_seconds;
   long long steps;
@@ -60,7 +55,9 @@ struct MdRunResult {
   double wall_seconds = 0.0;
   long long steps = 0;  // the engine's steps
   MdSeries series;
-  std::vector<MdSnapshot> snapshots;
+  // The coarse-grained snapshots at the output times (bins, MD units, this run's own
+  // single-snapshot standard errors: md_bridge/coarse_grainer.hpp).
+  fields::FieldSeries fields;
 };
 
 // One run of `engine` (which starts it anew). Validates the spec (scene_problem, times) and

@@ -14,19 +14,19 @@
 
 namespace {
 
-using granvv::compare::BinnedFields;
 using granvv::compare::box_energies;
 using granvv::compare::EnergiesPerParticle;
 using granvv::compare::mass_weighted_mean;
 using granvv::compare::noise_corrected_energies;
 using granvv::compare::peak_bin;
 using granvv::compare::periodic_centred_slope;
+using granvv::fields::FieldSnapshot;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-BinnedFields fields(std::vector<double> n, std::vector<double> v_x, std::vector<double> v_y,
-                    std::vector<double> T) {
-  BinnedFields f;
+FieldSnapshot fields(std::vector<double> n, std::vector<double> v_x, std::vector<double> v_y,
+                     std::vector<double> T) {
+  FieldSnapshot f;
   f.n = std::move(n), f.v_x = std::move(v_x), f.v_y = std::move(v_y), f.T = std::move(T);
   return f;
 }
@@ -73,7 +73,7 @@ TEST(BinnedEnergies, CorrectedFlowEnergyOfAGasAtRestIsZeroOnAverage) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   double corrected = 0.0, raw = 0.0;
   for (int d = 0; d < kDraws; ++d) {
-    BinnedFields f =
+    FieldSnapshot f =
         fields(std::vector<double>(kBins, 1.0), {}, {}, std::vector<double>(kBins, 1.0));
     for (int b = 0; b < kBins; ++b) {
       double sx = 0.0, sy = 0.0;

@@ -1,6 +1,7 @@
-// The command-line contract (docs/outputs.md, docs/architecture.md), driven through the real build/granvv binary:
-// bad input, --dry-run, `granvv list`, a small real run and its output folder, the report, and
-// the embedded default scene. Runs use tiny meshes so the whole file takes a few seconds.
+// The command-line contract (docs/outputs.md, docs/architecture.md), driven through the real
+// build/granvv binary: bad input, --dry-run, `granvv list`, a small real run and its output folder,
+// the report, and the embedded default scene. Runs use tiny meshes so the whole file takes a few
+// seconds.
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "app/case_schema.hpp"
+#include "fields/field_series_file.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::testing {
@@ -780,8 +783,39 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
   EXPECT_EQ(s["compare"]["verdict_rule"]["offset_sigmas"], s["compare"]["sigmas"]);
   EXPECT_GT(s["compare"]["cost"]["md"]["atom_steps"].get<double>(), 0.0);
   EXPECT_TRUE(contains(read_text(out / "case.toml"), "embedded:cases/quickstart.toml"));
-  EXPECT_TRUE(fs::is_regular_file(out / "results.h5"));
+  ASSERT_TRUE(fs::is_regular_file(out / "results.h5"));
   EXPECT_FALSE(fs::exists(scratch.path / "out")) << "--out was ignored";
+
+  // Both engines' fields are FieldSeries in the one layout (docs/outputs.md). Known answers:
+  // each hydro cell's density times its width (from /hydro/lagrangian's nodes) is its mass, and
+  // the particles' bins hold every disk (each member's counts add up to N, so does their mean).
+  H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
+  const fields::FieldSeries hydro = fields::read_field_series(h5.openGroup("/hydro/fields"));
+  const fields::FieldSeries md = fields::read_field_series(h5.openGroup("/md/fields"));
+  const H5::Group lagrangian = h5.openGroup("/hydro/lagrangian");
+  const auto node_x = h5::read_doubles(lagrangian, "node_x");
+  const auto mass = h5::read_doubles(lagrangian, "cell_mass").values;
+  EXPECT_EQ(hydro.geometry, fields::Geometry::cells);
+  ASSERT_EQ(node_x.shape.at(0), hydro.snapshots.size());
+  for (std::size_t k = 0; k < hydro.snapshots.size(); ++k) {
+    const auto& snap = hydro.snapshots[k];
+    ASSERT_EQ(snap.n.size(), 64u);
+    for (std::size_t i = 0; i < 64; ++i) {
+      const double left = node_x.values[k * 64 + i];
+      const double right = i + 1 < 64 ? node_x.values[k * 64 + i + 1] : node_x.values[k * 64] + 1;
+      EXPECT_NEAR(snap.n[i] * (right - left), mass[i], 1e-12) << "t = " << snap.t << ", cell " << i;
+    }
+  }
+  EXPECT_EQ(md.geometry, fields::Geometry::bins);
+  ASSERT_EQ(md.snapshots.size(), 3u);
+  const double particles = s["md"]["particles"].get<double>();
+  for (const auto& snap : md.snapshots) {
+    ASSERT_EQ(snap.count.size(), md.bin_edges.size() - 1);
+    double total = 0.0;
+    for (double c : snap.count) total += c;
+    EXPECT_NEAR(total, particles, 1e-9 * particles) << "t = " << snap.t;
+    EXPECT_EQ(snap.n_stderr.size(), snap.n.size()) << "the ensemble's error of the mean";
+  }
 }
 
 TEST(CliDefaultScene, DefaultOutputFolderIsOutSlashCaseName) {

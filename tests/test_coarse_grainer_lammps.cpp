@@ -37,7 +37,7 @@ TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
 
   CoarseGrainer grainer({-0.5 * lx, lx, -0.5 * ly, ly, bins, "bin", 0.0});
   const Moments m = grainer.accumulate(lmp.x()[0], lmp.v()[0], lmp.rmass(), lmp.nlocal());
-  const FieldProfile f = grainer.fields(m);
+  const fields::FieldSnapshot f = grainer.fields(m);
 
   auto* count = static_cast<double*>(
       lammps_extract_compute(lmp.handle(), "nc", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR));

@@ -25,7 +25,6 @@ namespace {
 using granvv::compare::agreement_window;
 using granvv::compare::AgreementWindow;
 using granvv::compare::bin_lagrangian_state;
-using granvv::compare::BinnedFields;
 using granvv::compare::ensemble_statistics;
 using granvv::compare::EnsembleStatistics;
 using granvv::compare::field_agrees;
@@ -35,6 +34,7 @@ using granvv::compare::FieldTrack;
 using granvv::compare::fit_power_law;
 using granvv::compare::flow_by_inertia_state;
 using granvv::compare::PowerLawFit;
+using granvv::fields::FieldSnapshot;
 using granvv::hydro::InitialFields;
 using granvv::hydro::LagrangianState;
 
@@ -540,7 +540,7 @@ TEST(BinnedFields, UniformStateGivesUniformFields) {
   for (const double v : {0.0, 0.3}) {
     const LagrangianState s = uniform_state(cells, v);
     for (const int bins : {1, 7, 12, 60, 97, 240}) {
-      const BinnedFields f = bin_lagrangian_state(s, bins);
+      const FieldSnapshot f = bin_lagrangian_state(s, bins);
       ASSERT_EQ(f.n.size(), std::size_t(bins));
       ASSERT_EQ(f.x.size(), std::size_t(bins));
       ASSERT_EQ(f.v_x.size(), std::size_t(bins));
@@ -605,7 +605,7 @@ Totals cell_totals(const LagrangianState& s) {
 
 // Bin totals: n_b / bins is the bin's mass, n_b v_b / bins its momentum, and
 // n_b (T_b + |v_b|^2 / 2) / bins its thermal plus flow energy.
-Totals bin_totals(const BinnedFields& f) {
+Totals bin_totals(const FieldSnapshot& f) {
   Totals t;
   const double dx = 1.0 / f.n.size();
   for (std::size_t b = 0; b < f.n.size(); ++b) {
@@ -631,7 +631,7 @@ TEST(BinnedFields, ConservesMassMomentumAndEnergyOnARandomPeriodicMesh) {
         }
         const Totals exact = cell_totals(s);
         for (const int bins : {1, 3, 17, 64, 1000}) {
-          const BinnedFields f = bin_lagrangian_state(s, bins);
+          const FieldSnapshot f = bin_lagrangian_state(s, bins);
           const Totals got = bin_totals(f);
           const std::string where = "cells " + std::to_string(cells) + " bins " +
                                     std::to_string(bins) + " shift " + std::to_string(shift) +
@@ -667,7 +667,7 @@ TEST(BinnedFields, SubBinFlowIsHeatWithTheTwoDimensionalFactorOneHalf) {
   s.cell_mass = {0.5, 0.5};
   s.cell_T = {T, T};
   for (const int bins : {1, 2}) {
-    const BinnedFields f = bin_lagrangian_state(s, bins);
+    const FieldSnapshot f = bin_lagrangian_state(s, bins);
     for (int b = 0; b < bins; ++b) {
       EXPECT_NEAR(f.n[b], 1.0, 1e-14);
       EXPECT_NEAR(f.v_x[b], v0, 1e-14);
@@ -676,7 +676,7 @@ TEST(BinnedFields, SubBinFlowIsHeatWithTheTwoDimensionalFactorOneHalf) {
   }
   s.node_vy = {w0 - w, w0 + w};
   for (const int bins : {1, 2}) {
-    const BinnedFields f = bin_lagrangian_state(s, bins);
+    const FieldSnapshot f = bin_lagrangian_state(s, bins);
     for (int b = 0; b < bins; ++b) {
       EXPECT_NEAR(f.v_y[b], w0, 1e-14);
       EXPECT_NEAR(f.T[b], T + (u * u + w * w) / 6, 1e-14) << "bins " << bins;
@@ -685,7 +685,7 @@ TEST(BinnedFields, SubBinFlowIsHeatWithTheTwoDimensionalFactorOneHalf) {
   // Four bins over the same pair: each bin holds half a cell, where v spans u (not 2u), so the
   // heat is (u/2)^2/6 and the bin velocities are v0 -+ u/2 on the rising cell.
   s.node_vy.clear();
-  const BinnedFields f = bin_lagrangian_state(s, 4);
+  const FieldSnapshot f = bin_lagrangian_state(s, 4);
   EXPECT_NEAR(f.v_x[0], v0 - u / 2, 1e-14);
   EXPECT_NEAR(f.v_x[1], v0 + u / 2, 1e-14);
   EXPECT_NEAR(f.v_x[2], v0 + u / 2, 1e-14);
@@ -700,11 +700,11 @@ TEST(BinnedFields, ShiftByOneBinRollsTheFields) {
   const int bins = 25;
   for (const double shift : {-0.3, 0.0, 0.2}) {
     const LagrangianState s = random_mesh(83, shift, true, rng);
-    const BinnedFields f = bin_lagrangian_state(s, bins);
+    const FieldSnapshot f = bin_lagrangian_state(s, bins);
     for (const int by : {1, -1, bins}) {
       LagrangianState moved = s;
       for (double& x : moved.node_x) x += double(by) / bins;
-      const BinnedFields g = bin_lagrangian_state(moved, bins);
+      const FieldSnapshot g = bin_lagrangian_state(moved, bins);
       for (int b = 0; b < bins; ++b) {
         const int to = ((b + by) % bins + bins) % bins;
         EXPECT_NEAR(g.x[b], f.x[b], 1e-15);
@@ -757,7 +757,7 @@ TEST(BinnedFlowByInertia, BinnedDensityMatchesTheExactBinAverage) {
   const int labels = 4000, bins = 21, centre = bins / 2;
   const LagrangianState s = flow_by_inertia_state(init, t, labels);
   ASSERT_EQ(s.cells(), labels);
-  const BinnedFields f = bin_lagrangian_state(s, bins);
+  const FieldSnapshot f = bin_lagrangian_state(s, bins);
   ASSERT_EQ(f.n.size(), std::size_t(bins));
   EXPECT_NEAR(f.x[centre], 0.0, 1e-15);
 

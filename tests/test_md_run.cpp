@@ -57,15 +57,15 @@ TEST(MdRun, SmallCoolingGasConservesMomentumAndParticlesAndCools) {
   const double haff = 1.0 / std::pow(1.0 + 8.0 / t0, 2);
   EXPECT_NEAR(s.T.back() / s.T.front(), haff, 0.1 * haff);
   // Coarse-grained snapshots: integral of n over the box is the number of disks.
-  ASSERT_EQ(r.snapshots.size(), 2u);
-  for (const auto& snap : r.snapshots) {
+  ASSERT_EQ(r.fields.snapshots.size(), 2u);
+  for (const auto& snap : r.fields.snapshots) {
     double total = 0.0;
     const double bin_area = 60.0 * small_cooling_gas(8).scene.box_length / 10;
-    for (double n : snap.fields.n) total += n * bin_area;
+    for (double n : snap.n) total += n * bin_area;
     EXPECT_NEAR(total, 600.0, 1e-9);
   }
-  EXPECT_EQ(r.snapshots.front().t, 0.0);
-  EXPECT_NEAR(r.snapshots.back().t, 8.0, engine.contact().dt);
+  EXPECT_EQ(r.fields.snapshots.front().t, 0.0);
+  EXPECT_NEAR(r.fields.snapshots.back().t, 8.0, engine.contact().dt);
   // The engine's own series: kn and dt at every sample.
   ASSERT_EQ(r.series.engine.size(), 2u);
   EXPECT_EQ(r.series.engine[0].first, "kn");

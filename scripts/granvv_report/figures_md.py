@@ -316,8 +316,9 @@ def fig_md_fields(run):
     """MD coarse-grained profiles n, v_x, v_y, T at the snapshot times, with ensemble error bands."""
     F = run.md_fields
     t = arr(F, "t", 1)
-    x = arr(F, "x", 1)
-    if t is None or x is None or x.ndim != 1:
+    x = arr(F, "x", 1)   # [snapshots x bins]: the bins do not move, so the first row serves all
+    x = x[0] if x is not None and x.ndim == 2 else None
+    if t is None or x is None:
         if F is None:
             md_timeseries(run)   # Skip naming the failure, or the absence of a particle run
             raise Skip("no /md/fields in results.h5")
