@@ -83,6 +83,8 @@ std::vector<KeySpec> rows_without_initial() {
       // inserted here by with_initial_condition_rows().
 
       // [hydro]
+      {"hydro.enabled", kBoolean, true, any_value(),
+       "run the hydro for this case (false: a particle-only scene)"},
       {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
       {"hydro.t_end", kReal, 4.0, positive(),
        "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
@@ -248,6 +250,11 @@ CrossCheck comparison_is_possible() {
   check.rule = "compare.enabled needs md.enabled, md.output_times from 0, no hydro.output_times";
   check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
     if (!c.boolean("compare.enabled")) return std::nullopt;
+    if (!c.boolean("hydro.enabled")) {
+      return CrossViolation{"compare.enabled", "needs hydro.enabled = true " +
+                                                   from(c, "hydro.enabled") +
+                                                   ": a comparison runs both engines"};
+    }
     if (!c.boolean("md.enabled")) {
       return CrossViolation{"compare.enabled", "needs md.enabled = true " + from(c, "md.enabled") +
                                                    ": a comparison runs both engines"};
@@ -286,6 +293,18 @@ CrossCheck smooth_kernel_has_width() {
   return check;
 }
 
+// A case runs at least one model.
+CrossCheck something_runs() {
+  CrossCheck check;
+  check.rule = "hydro.enabled or md.enabled";
+  check.check = [](const CaseConfig& c) -> std::optional<CrossViolation> {
+    if (c.boolean("hydro.enabled") || c.boolean("md.enabled")) return std::nullopt;
+    return CrossViolation{"hydro.enabled", "is false " + from(c, "hydro.enabled") +
+                                               " and so is md.enabled: the case runs nothing"};
+  };
+  return check;
+}
+
 }  // namespace
 
 const std::vector<CrossCheck>& case_cross_checks() {
@@ -294,6 +313,7 @@ const std::vector<CrossCheck>& case_cross_checks() {
       times_within_run("md.output_times", "md.t_end"),
       smooth_kernel_has_width(),
       comparison_is_possible(),
+      something_runs(),
       strictly_less("analysis.tau_fit_min_density", "analysis.tau_fit_max_density"),
       strictly_less("analysis.profile_fit_x_min", "analysis.profile_fit_x_max"),
       // convergence.cells (strictly increasing, each >= 4) is a per-key constraint above.

@@ -7,11 +7,13 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/model.hpp"
 #include "compare/binned_energies.hpp"
 #include "compare/density_modes.hpp"
 #include "compare/ensemble_error_model.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "compare/ensemble_statistics.hpp"
+#include "compare/model_comparison.hpp"
 #include "compare/profile_measures.hpp"
 #include "compare/verdict.hpp"
 #include "hydro/flow_by_inertia.hpp"
@@ -22,55 +24,6 @@ namespace granvv::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Flow by inertia is put on the bins up to this fraction of its singularity time: at the
-// singularity itself its density is infinite in one bin (paper Eqs. 5-7).
-constexpr double kInertiaBeforeSingularity = 0.999;
-
-// The particles' ensemble mean of one snapshot in scaled units (n in n0; x, v and T are
-// already scaled in MD units, docs/physics.md §4), with the error of that mean for each compared
-// field: one member's snapshot error model calibrated by the ensemble
-// (compare/ensemble_error_model.hpp). Records each field's error source.
-fields::FieldSnapshot md_mean_scaled(const MdOutcome& md_out, std::size_t s, double n0,
-                                     std::vector<FieldComparison>& compared) {
-  const fields::FieldSnapshot& mean = md_out.fields.snapshots[s];
-  const fields::FieldSnapshot& first = md_out.runs.front().fields.snapshots[s];
-  std::vector<fields::FieldSeries> members;
-  for (const auto& run : md_out.runs) members.push_back(run.fields);
-  const int bins = static_cast<int>(mean.n.size());
-  fields::FieldSnapshot m;
-  m.t = mean.t, m.label = mean.label;
-  for (int b = 0; b < bins; ++b) {
-    m.n.push_back(mean.n[b] / n0);
-    // Poisson for one member's bin count (an ideal gas; S(0) < 1 at finite density, and the
-    // ensemble calibration corrects the level), in MD units like the ensemble's.
-    m.n_stderr.push_back(mean.count[b] > 0 ? mean.n[b] / std::sqrt(mean.count[b]) : kNaN);
-  }
-  m.v_x = mean.v_x, m.v_y = mean.v_y, m.T = mean.T;
-  m.v_x_stderr = first.v_x_stderr, m.v_y_stderr = first.v_y_stderr, m.T_stderr = first.T_stderr;
-  m.count = mean.count;
-  for (auto& f : compared) {
-    const fields::FieldColumn& c = fields::field_column(f.name);
-    compare::EnsembleMeanError e = compare::ensemble_mean_error(
-        m.*c.standard_error, compare::column_statistics(members, s, c.values));
-    f.error_source = compare::error_source_label(e);
-    m.*c.standard_error = std::move(e.error);
-  }
-  for (double& e : m.n_stderr) e /= n0;
-  return m;
-}
-
-// Per field: the hydro on the bins against the particles' mean and its error, at one time.
-void compare_fields_at(std::vector<FieldComparison>& compared, const fields::FieldSnapshot& hb,
-                       const fields::FieldSnapshot& md, double sigmas) {
-  const double T_bar = compare::mass_weighted_mean(md.n, md.T);
-  for (auto& f : compared) {
-    const fields::FieldColumn& c = fields::field_column(f.name);
-    // The scale of the differences: n0 for n, the thermal speed for v, the mean T for T.
-    const double scale = f.name == "n" ? 1.0 : f.name == "T" ? T_bar : std::sqrt(T_bar);
-    f.track.at.push_back(
-        compare::field_difference(hb.*c.values, md.*c.values, md.*c.standard_error, scale, sigmas));
-  }
-}
 
 // Peak density, |dv/dx| at the peak and the energies per particle, both engines on the bins.
 void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& hb,
@@ -94,10 +47,10 @@ void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& 
 // noise-born modes differ between seeds, so the mean field would average them away), and the
 // linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with exp(A s)
 // (hydro/linear_stability.hpp), rms over members.
-void compare_density_modes(
-    CompareOutcome& out, int modes, const hydro::Physics& physics, const MdOutcome& md_out,
-    const std::vector<std::pair<std::size_t, const hydro::LagrangianState*>>& pairs, double n0,
-    int bins) {
+void compare_density_modes(CompareOutcome& out, int modes, const hydro::Physics& physics,
+                           const MdOutcome& md_out,
+                           const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                           const fields::FieldSeries& hydro_on_bins, double n0) {
   const int members = static_cast<int>(md_out.runs.size());
   for (int k = 1; k <= modes; ++k) {
     out.theory_rate.push_back(hydro::hcs_modes(physics, k)[0].rate.real());
@@ -110,7 +63,7 @@ void compare_density_modes(
     }
   }
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const auto hb = compare::bin_lagrangian_state(*pairs[i].second, bins);
+    const auto& hb = hydro_on_bins.snapshots[pairs[i].second];
     std::vector<double> hydro_row, md_row, md_err, theory_row;
     const std::size_t s_index = pairs[i].first;
     for (int k = 1; k <= modes; ++k) {
@@ -234,71 +187,70 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   CompareOutcome out;
   for (int b = 0; b < bins; ++b) out.x.push_back(-0.5 + (b + 0.5) / bins);
 
-  // The output times both engines reached: each MD snapshot against the hydro snapshot taken
-  // at the same scaled time.
-  std::vector<std::pair<std::size_t, const hydro::LagrangianState*>> pairs;
-  for (std::size_t k = 0; k < md_out.fields.snapshots.size(); ++k) {
-    const double t = sc.scaled_time(md_out.fields.snapshots[k].t);
-    for (const auto& h : hydro_out.run.snapshots) {
-      if (std::abs(h.state.t - t) <= 1e-9 * std::max(1.0, t)) {
-        pairs.emplace_back(k, &h.state);
-        break;
-      }
-    }
-  }
+  // Both models on the particles' bins, scaled units (app/model.hpp): the particles' ensemble
+  // mean with the error of that mean, and the hydro binned like the particles.
+  std::vector<fields::FieldSeries> member_fields;
+  for (const auto& run : md_out.runs) member_fields.push_back(run.fields);
+  const compare::EnsembleMeanFields mean =
+      compare::ensemble_mean_fields(member_fields, scaled_units(sc));
+  const fields::ModelResult particles = particle_result(md, md_out, mean.fields);
+  const fields::ModelResult continuum = hydro_result(hydro, hydro_out, bins);
+  // The output times both reached: each particle snapshot against the hydro's at that time.
+  const auto pairs = compare::common_snapshots(*particles.fields, *continuum.fields);
 
   std::vector<std::string> names = {"n", "v_x", "T"};
   if (hydro.transverse) names.insert(names.begin() + 2, "v_y");
-  for (const auto& name : names) {
+  const auto tracks = compare::compare_field_series(*particles.fields, *continuum.fields, pairs,
+                                                    names, scene.sigmas);
+  for (const auto& track : tracks) {
     FieldComparison f;
-    f.name = name;
-    f.track.field = name;
+    f.name = track.field;
+    f.track = track;
+    if (!pairs.empty()) {  // how the error was made, at the last compared time
+      const auto& all = compare::fields_with_errors();
+      const auto k = std::find(all.begin(), all.end(), f.name) - all.begin();
+      f.error_source = mean.error_source[pairs.back().first][k];
+    }
     out.fields.push_back(std::move(f));
   }
+
   out.hydro_on_bins = out.md_on_bins = fields::FieldSeries::on_bins(-0.5, 1.0, bins);
+  for (const auto& [i, j] : pairs) {
+    const fields::FieldSnapshot& m = particles.fields->snapshots[i];
+    const fields::FieldSnapshot& h = continuum.fields->snapshots[j];
+    out.t.push_back(m.t);
+    record_peak_and_energies(out, h, m, members);
+    out.collision_clock.push_back(
+        hydro::collision_clock(m.t, hydro::haff_time_scale(hydro.physics)));
+    out.hydro_on_bins.snapshots.push_back(h);
+    out.md_on_bins.snapshots.push_back(m);
+  }
 
-  const hydro::InitialFields case_fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
-  const auto inertia_reference = hydro::inertia_reference(hydro.initial);
-  const bool smooth = inertia_reference.has_value();
-  const double inertia_tau = smooth ? inertia_reference->flow.singularity_time() : kNaN;
-  const double t0 = hydro::haff_time_scale(hydro.physics);
-
-  for (const auto& [k, h] : pairs) {
-    const double t = sc.scaled_time(md_out.fields.snapshots[k].t);
-    out.t.push_back(t);
-    fields::FieldSnapshot hb = compare::bin_lagrangian_state(*h, bins);
-    hb.t = t, hb.label = "output";
-    fields::FieldSnapshot md_mean = md_mean_scaled(md_out, k, n0, out.fields);
-    md_mean.t = t, md_mean.x = hb.x;
-    compare_fields_at(out.fields, hb, md_mean, scene.sigmas);
-    record_peak_and_energies(out, hb, md_mean, members);
-    out.hydro_on_bins.snapshots.push_back(std::move(hb));
-    out.md_on_bins.snapshots.push_back(std::move(md_mean));
-    // Flow by inertia on the same bins, before its singularity.
-    if (smooth && t < kInertiaBeforeSingularity * inertia_tau) {
-      const auto inertia = compare::bin_lagrangian_state(
-          compare::flow_by_inertia_state(case_fields, t, 100 * bins), bins);
-      out.inertia_n.push_back(inertia.n);
-      out.inertia_v.push_back(inertia.v_x);
-      out.inertia_n_peak.push_back(*std::max_element(inertia.n.begin(), inertia.n.end()));
-    } else {
-      out.inertia_n.emplace_back(bins, kNaN);
-      out.inertia_v.emplace_back(bins, kNaN);
-      out.inertia_n_peak.push_back(kNaN);
+  // Flow by inertia (paper Eq. 5) on the same bins where the case's initial velocity has it,
+  // NaN rows at the times it does not reach (at and after its singularity).
+  std::optional<fields::ModelResult> inertia;
+  if (hydro::inertia_reference(hydro.initial)) {
+    inertia = make_inertia_model(hydro.initial, hydro.physics, out.t, bins)->run();
+  }
+  for (double t : out.t) {
+    const fields::FieldSnapshot* s = nullptr;
+    if (inertia) {
+      for (const auto& snap : inertia->fields->snapshots) {
+        if (snap.t == t) s = &snap;
+      }
     }
-    out.collision_clock.push_back(hydro::collision_clock(t, t0));
+    out.inertia_n.push_back(s ? s->n : std::vector<double>(bins, kNaN));
+    out.inertia_v.push_back(s ? s->v_x : std::vector<double>(bins, kNaN));
+    out.inertia_n_peak.push_back(s ? *std::max_element(s->n.begin(), s->n.end()) : kNaN);
   }
 
   if (scene.density_modes > 0 && !pairs.empty()) {
-    compare_density_modes(out, scene.density_modes, hydro.physics, md_out, pairs, n0, bins);
+    compare_density_modes(out, scene.density_modes, hydro.physics, md_out, pairs, *continuum.fields,
+                          n0);
   }
 
-  std::vector<compare::FieldTrack> tracks;
-  for (const auto& f : out.fields) tracks.push_back(f.track);
   out.window = compare::agreement_window(out.t, tracks, scene.agreement_fraction);
-
   out.signal_to_noise = initial_signal_to_noise(md).ratio();
-
   write_verdict(out, scene);
   return out;
 }

@@ -26,6 +26,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   }
   s.initial = hydro::initial_parameters(c.string("initial.type"), std::move(values));
   const auto& ini = s.initial;
+  s.closure = "dilute";  // the paper's closure; a hydro.closure key comes with the closures issue
   s.cells = static_cast<int>(c.integer("hydro.cells"));
   s.node_offset = c.real("hydro.node_offset");
   s.transverse = c.boolean("hydro.transverse_velocity");
@@ -78,7 +79,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {
   HydroOutcome out;
   const auto& physics = scene.physics;
-  const auto closure = hydro::make_closure("dilute", {physics, {}});
+  const auto closure = hydro::make_closure(scene.closure, {physics, {}});
   out.fields =
       scene.given_fields ? *scene.given_fields : hydro::make_initial_fields(scene.initial, physics);
   out.unstable_modes = hydro::clustering_unstable_modes(physics);

@@ -16,6 +16,7 @@ namespace granvv::app {
 
 struct HydroScene {
   hydro::Physics physics;
+  std::string closure;  // a registered closure (hydro/closure_registry.cpp)
   hydro::InitialParameters initial;
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (app/compare_scene.hpp).

@@ -19,7 +19,7 @@ namespace granvv::app {
 
 struct MdScene {
   md::MdRunSpec spec;  // spec.seed is the first seed; member m uses seed + m
-  int ensemble = 1;
+  int ensemble = 0;    // md.ensemble
   std::string engine;  // md.engine
   // Every number and boolean of [md] by key: the engine reads the ones it understands.
   md::EngineSettings engine_settings;

@@ -82,8 +82,7 @@ void write_convergence(H5::Group g, const hydro::ConvergenceStudy& c) {
 
 }  // namespace
 
-void write_results_file(const std::filesystem::path& file, const RunMetadata& meta,
-                        const HydroScene& scene, const HydroOutcome& out) {
+void create_results_file(const std::filesystem::path& file, const RunMetadata& meta) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_TRUNC);
   H5::Group root = h5.openGroup("/");
@@ -91,7 +90,12 @@ void write_results_file(const std::filesystem::path& file, const RunMetadata& me
   write_attribute(root, "case", meta.case_name);
   write_attribute(root, "config_toml", meta.config_toml);
   for (const auto& [key, value] : meta.config) write_attribute(root, key, value);
+}
 
+void write_hydro_results(const std::filesystem::path& file, const HydroScene& scene,
+                         const HydroOutcome& out) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
   H5::Group hydro_group = h5.createGroup("/hydro");
   write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series);
   H5::Group fields = h5.createGroup("/hydro/fields");

@@ -1,7 +1,7 @@
 #pragma once
-// results.h5: the FieldSeries of the hydro run (snapshots at cell centres), its native
-// Lagrangian arrays, the whole-mesh time series, theory references and the convergence
-// study, with the resolved case as root attributes. Layout documented in README.md.
+// results.h5: the resolved case as root attributes, and the hydro's group: its FieldSeries (on
+// its cells), its native Lagrangian arrays, the whole-mesh time series, theory references and
+// the convergence study. Layout in docs/outputs.md.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -16,7 +16,9 @@ struct RunMetadata {
   std::vector<std::pair<std::string, std::string>> config;  // flattened resolved keys
 };
 
-void write_results_file(const std::filesystem::path& file, const RunMetadata& meta,
-                        const HydroScene& scene, const HydroOutcome& outcome);
+// Creates (or truncates) the file with the root attributes; every model's group is added to it.
+void create_results_file(const std::filesystem::path& file, const RunMetadata& meta);
+void write_hydro_results(const std::filesystem::path& file, const HydroScene& scene,
+                         const HydroOutcome& outcome);
 
 }  // namespace granvv::app

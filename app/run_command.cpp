@@ -184,10 +184,17 @@ int run_command(const RunOptions& options) {
     };
 
     // In a comparison the particles run first: the hydro starts from their coarse-grained
-    // t = 0 fields (or the case's) and is sampled at their snapshot times.
+    // t = 0 fields (or the case's) and is sampled at their snapshot times. Each part's results
+    // are written as soon as it has finished.
+    if (writer) create_results_file(dir / "results.h5", meta);
     std::optional<MdOutcome> md;
+    auto finish_particles = [&]() {
+      if (writer) write_md_results(dir / "results.h5", *md_scene, *md);
+      summary["md"] = md_summary(*md_scene, *md);
+    };
     if (compare_scene) {
       md = run_particle_engine();
+      finish_particles();
       const auto& sc = md_scene->spec.scene;
       if (compare_scene->hydro_from_md) {
         scene.given_fields = fields_from_snapshot(md->fields.snapshots.front(), sc);
@@ -205,30 +212,36 @@ int run_command(const RunOptions& options) {
       log->info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", scene.control.t_end,
                 scene.control.output_times.size());
     }
-    const HydroOutcome outcome = run_continuum(scene, *log);
-    const auto& run = outcome.run;
-    if (writer) write_results_file(dir / "results.h5", meta, scene, outcome);
-    summary["hydro"] = hydro_summary(scene, outcome);
-    summary["status"] = hydro::to_string(run.status);
-    if (run.status == hydro::RunStatus::failed) {
-      log->error("hydro run failed: {}", run.stop_reason);
-      exit_code = 1;
+    std::optional<HydroOutcome> outcome;
+    if (config.boolean("hydro.enabled")) {
+      outcome = run_continuum(scene, *log);
+      const auto& run = outcome->run;
+      if (writer) write_hydro_results(dir / "results.h5", scene, *outcome);
+      summary["hydro"] = hydro_summary(scene, *outcome);
+      summary["status"] = hydro::to_string(run.status);
+      if (run.status == hydro::RunStatus::failed) {
+        log->error("hydro run failed: {}", run.stop_reason);
+        exit_code = 1;
+      }
+    } else {
+      log->info("hydro: not run (hydro.enabled = false)");
     }
     if (md_scene) {
-      if (!md) md = run_particle_engine();
-      if (writer) write_md_results(dir / "results.h5", *md_scene, *md);
-      summary["md"] = md_summary(*md_scene, *md);
-      if (summary["status"] == "ok") summary["status"] = md->runs.back().status;
+      if (!md) {
+        md = run_particle_engine();
+        finish_particles();
+      }
+      if (!outcome || summary["status"] == "ok") summary["status"] = md->runs.back().status;
     }
     if (compare_scene) {
       const CompareOutcome compared =
-          compare_engines(*compare_scene, scene, outcome, *md_scene, *md);
+          compare_engines(*compare_scene, scene, *outcome, *md_scene, *md);
       if (writer) write_compare_results(dir / "results.h5", *compare_scene, *md_scene, compared);
       summary["compare"] =
-          compare_summary(*compare_scene, scene, outcome, *md_scene, *md, compared);
+          compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);
       log->info("compare: {}", compared.verdict);
-      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})", run.wall_seconds,
-                md->wall_seconds, md->cost.work, md->cost.work_unit);
+      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
+                outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);
     }
   } catch (const std::exception& e) {
     log->error("run failed: {}", e.what());

@@ -1,10 +1,10 @@
 #pragma once
 // Homogeneous cooling measured over a range of restitution coefficients r, against kinetic
 // theory. For smooth inelastic disks the cooling rate of the temperature at T0 is
-// zeta = 2 / t0 = sqrt(pi) (1 - r^2) chi(phi) n sigma sqrt(T0/m) (docs/physics.md §4), so the measured
-// zeta should scale as (1 - r^2)^1. The paper's hydro keeps the small-q form 8q/K, i.e.
-// 1 - r^2 ~ 4q = 2 (1 - r), which overestimates the rate by the factor 2 / (1 + r); at finite
-// density it also lacks chi(phi) unless that is put in.
+// zeta = 2 / t0 = sqrt(pi) (1 - r^2) chi(phi) n sigma sqrt(T0/m) (docs/physics.md §4), so the
+// measured zeta should scale as (1 - r^2)^1. The paper's hydro keeps the small-q form 8q/K, i.e. 1
+// - r^2 ~ 4q = 2 (1 - r), which overestimates the rate by the factor 2 / (1 + r); at finite density
+// it also lacks chi(phi) unless that is put in.
 #include <optional>
 #include <vector>
 
@@ -27,7 +27,7 @@ struct CoolingSweep {
   std::vector<double> paper_deviation, paper_deviation_sigmas;
   // zeta = C (1 - r^2)^p fitted over the points with r >= power_r_min (nullopt: < 2 points).
   std::optional<PowerLawFit> power;
-  double power_r_min = 0.7;
+  double power_r_min = 0.0;
   // The largest r at which the small-q rate (with chi) misses the measured rate by more than
   // `sigmas` standard errors (nullopt: it never does).
   std::optional<double> paper_departs_at;

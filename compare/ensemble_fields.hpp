@@ -19,4 +19,23 @@ EnsembleStatistics column_statistics(const std::vector<fields::FieldSeries>& mem
 // Throws std::invalid_argument without members.
 fields::FieldSeries ensemble_field_series(const std::vector<fields::FieldSeries>& members);
 
+// Units of a particle run in the hydro's scaled variables (docs/physics.md §4): x / length,
+// n / density, t / time; v and T are already scaled in MD units (sqrt(T0/m), T0).
+struct ScaledUnits {
+  double length = 1.0, density = 1.0, time = 1.0;
+};
+
+// The particles as a model's fields: the ensemble mean in scaled units, each field's *_stderr the
+// error of that mean from one member's snapshot error model (member 0's: the coarse-grainer's
+// sqrt(T/N) and T/sqrt(N - 1), Poisson n/sqrt(N) for n), calibrated by the ensemble's scatter
+// (compare/ensemble_error_model.hpp). error_source[s][f] labels how the error of field f
+// (fields_with_errors order) was made at snapshot s.
+struct EnsembleMeanFields {
+  fields::FieldSeries fields;
+  std::vector<std::vector<std::string>> error_source;
+};
+const std::vector<std::string>& fields_with_errors();  // n, v_x, v_y, T
+EnsembleMeanFields ensemble_mean_fields(const std::vector<fields::FieldSeries>& members,
+                                        const ScaledUnits& units);
+
 }  // namespace granvv::compare

@@ -39,6 +39,16 @@ FieldDifference field_difference(const std::vector<double>& hydro, const std::ve
   return f;
 }
 
+FieldDifference deterministic_field_difference(const std::vector<double>& candidate,
+                                               const std::vector<double>& reference, double scale) {
+  // Unit errors and infinitely many sigmas: every finite bin counts, none is judged.
+  FieldDifference f =
+      field_difference(candidate, reference, std::vector<double>(reference.size(), 1.0), scale,
+                       std::numeric_limits<double>::infinity());
+  f.fraction_within = f.worst_z = std::numeric_limits<double>::quiet_NaN();
+  return f;
+}
+
 bool field_agrees(const FieldDifference& d, double required_fraction) {
   return !std::isnan(d.fraction_within) && d.fraction_within >= required_fraction;
 }

@@ -24,6 +24,12 @@ struct FieldDifference {
 FieldDifference field_difference(const std::vector<double>& hydro, const std::vector<double>& md,
                                  const std::vector<double>& md_error, double scale, double sigmas);
 
+// The same norms between two models without standard errors (both deterministic: a hydro, an
+// exact solution), over the bins where both are finite; fraction_within and worst_z are NaN,
+// because there is no error to judge a difference by. Throws like field_difference.
+FieldDifference deterministic_field_difference(const std::vector<double>& candidate,
+                                               const std::vector<double>& reference, double scale);
+
 // One field's differences at a sequence of output times.
 struct FieldTrack {
   std::string field;

@@ -17,15 +17,16 @@
 namespace granvv::md {
 
 struct LammpsEngineOptions {
-  double restitution = 0.9;  // target r, the scene's
+  // Set from the scene and the md.* keys (their defaults are in the case schema only).
+  double restitution = 0.0;  // target r, the scene's
   double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
   double box_width = 0.0;
-  long long particles = 0;         // N, for the cost in atom-steps
-  double max_overlap = 0.01;       // sigma, at the fastest relative speed present (md.max_overlap)
-  int steps_per_contact = 30;      // md.steps_per_contact
-  bool adaptive_stiffness = true;  // md.adaptive_stiffness
-  double adapt_below = 0.5;        // re-stiffen when the fastest speed fell below this fraction
-  std::string log_file = "none";   // LAMMPS -log of the runs (not of the calibration)
+  long long particles = 0;          // N, for the cost in atom-steps
+  double max_overlap = 0.0;         // sigma, at the fastest relative speed present (md.max_overlap)
+  int steps_per_contact = 0;        // md.steps_per_contact
+  bool adaptive_stiffness = false;  // md.adaptive_stiffness
+  double adapt_below = 0.5;         // re-stiffen when the fastest speed fell below this fraction
+  std::string log_file = "none";    // LAMMPS -log of the runs (not of the calibration)
   MPI_Comm comm = MPI_COMM_WORLD;
 };
 

@@ -18,12 +18,13 @@ namespace granvv::md {
 struct MdRunSpec {
   ParticleScene scene;
   hydro::InitialFields fields;  // scaled units (hydro/initial_conditions.hpp)
-  std::uint64_t seed = 1;
-  double t_end = 100.0;              // MD units
-  double sample_interval = 1.0;      // time series every this much MD time
+  // Set from the case's md.* keys (their defaults are in the case schema only).
+  std::uint64_t seed = 0;
+  double t_end = 0.0;                // MD units
+  double sample_interval = 0.0;      // time series every this much MD time
   std::vector<double> output_times;  // coarse-grained snapshots (nearest step), MD units
-  int bins = 100;
-  std::string kernel = "bin";
+  int bins = 0;
+  std::string kernel;
   double kernel_width = 0.0;  // sigma
   // H5MD particle snapshots (md_bridge/h5md_writer.hpp): every snapshot_interval of MD time
   // (0 = none), written by rank 0 to h5md_path; the whole-box observables at every sample.

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "fields/model_result.hpp"
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/particle_scene.hpp"
 
@@ -52,12 +53,7 @@ struct ParticleFrame {
 // Wall seconds since the engine was made (the whole particle part: collision-rule check,
 // every run, the coarse-graining between segments) and the engine's own unit of work
 // (LAMMPS: "atom_steps", particles x time steps) summed over every run so far.
-struct EngineCost {
-  double wall_seconds = 0.0;
-  double work = 0.0;
-  std::string work_unit;
-  double per_second() const { return work / wall_seconds; }
-};
+using EngineCost = fields::ModelCost;
 
 // An engine-specific result for the summary, by a dotted key inside its `md` block
 // ("contact_initial.kn"); the writer prints it without knowing what it means.

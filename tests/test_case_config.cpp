@@ -246,7 +246,7 @@ TEST(CaseConfigErrors, IntegerBelowMinimum) {
 TEST(CaseConfigErrors, UnknownKeySuggestsClosest) {
   const std::string m = error_of("[hydro]\ncells = 100\ncels = 200\n[physics]\nK=1\nq=0.1\n");
   EXPECT_EQ(m.rfind("cases/x.toml:3:1: unknown key 'hydro.cels' (did you mean 'hydro.cells'?); "
-                    "allowed in [hydro]: cells, t_end, output_times, cfl,",
+                    "allowed in [hydro]: enabled, cells, t_end, output_times, cfl,",
                     0),
             0u)
       << m;
@@ -266,7 +266,7 @@ TEST(CaseConfigErrors, UnknownKeyWithoutSuggestion) {
 
 TEST(CaseConfigErrors, TableExpected) {
   const std::string m = error_of("hydro = 3\n" + std::string(kMinimalCase));
-  EXPECT_CONTAINS(m, "hydro = 3: expected a table [hydro] with keys cells, t_end");
+  EXPECT_CONTAINS(m, "hydro = 3: expected a table [hydro] with keys enabled, cells, t_end");
 }
 
 TEST(CaseConfigErrors, WrongTypeInFile) {
@@ -309,7 +309,7 @@ TEST(CaseConfigErrors, UnknownKeyInOverride) {
   const std::string m = error_of(kMinimalCase, {"hydro.cels=100"});
   EXPECT_CONTAINS(m,
                   "--set hydro.cels=100: unknown key 'hydro.cels' (did you mean "
-                  "'hydro.cells'?); allowed in [hydro]: cells,");
+                  "'hydro.cells'?); allowed in [hydro]: enabled, cells,");
   const std::string t = error_of(kMinimalCase, {"hydroo.cells=100"});
   EXPECT_CONTAINS(t,
                   "unknown key 'hydroo.cells' (did you mean 'hydro.cells'?); allowed at top "

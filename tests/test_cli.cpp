@@ -287,7 +287,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"set_on_named_scene",
                  "",
                  "single_mode --set hydro.cells=3",
-                 {"hydro.cells = 3", ">= 4"}}),
+                 {"hydro.cells = 3", ">= 4"}},
+        BadInput{"comparison_without_hydro",
+                 "",
+                 "md_haff --set hydro.enabled=false",
+                 {"compare.enabled", "hydro.enabled = true", "runs both"}},
+        BadInput{"nothing_to_run",
+                 "",
+                 "haff --set hydro.enabled=false",
+                 {"hydro.enabled", "runs nothing"}}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
 // The contract: "Nothing already written is lost."
@@ -816,6 +824,26 @@ TEST(CliDefaultScene, RunWithoutCaseRunsTheEmbeddedQuickstart) {
     EXPECT_NEAR(total, particles, 1e-9 * particles) << "t = " << snap.t;
     EXPECT_EQ(snap.n_stderr.size(), snap.n.size()) << "the ensemble's error of the mean";
   }
+}
+
+// A particle-only scene (hydro.enabled = false, as md_cooling_sweep) runs no hydro: its summary
+// has "hydro": null, results.h5 has no /hydro group, and the status is the particles'.
+TEST(CliParticlesOnly, SceneWithoutHydroRunsOnlyTheParticles) {
+  ScratchFolder scratch("particles-only");
+  const fs::path out = scratch.path / "run";
+  const CliStreams r = run_cli_streams(
+      "run md_cooling_sweep --quiet --no-report --set md.ensemble=1 --set md.t_end=0.05 "
+      "--set md.particles=200 --set md.box_width=60 --out " +
+      q(out));
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const json s = json::parse(read_text(out / "summary.json"));
+  EXPECT_TRUE(s["hydro"].is_null()) << s.dump(2);
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["md"]["status"], "ok");
+  H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
+  EXPECT_FALSE(h5.nameExists("/hydro"));
+  EXPECT_TRUE(h5.nameExists("/md/fields"));
+  EXPECT_TRUE(contains(read_text(out / "run.log"), "hydro: not run (hydro.enabled = false)"));
 }
 
 TEST(CliDefaultScene, DefaultOutputFolderIsOutSlashCaseName) {

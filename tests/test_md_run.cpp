@@ -23,6 +23,8 @@ MdRunSpec small_cooling_gas(double t_end) {
   spec.t_end = t_end;
   spec.sample_interval = t_end / 10;
   spec.bins = 10;
+  spec.kernel = "bin";
+  spec.seed = 1;
   spec.output_times = {0.0, t_end};
   return spec;
 }
@@ -33,6 +35,9 @@ LammpsEngineOptions engine_options(const MdRunSpec& spec) {
   o.box_length = spec.scene.box_length;
   o.box_width = spec.scene.box_width;
   o.particles = spec.scene.particles;
+  o.max_overlap = 0.01;  // the case schema's defaults of md.max_overlap, md.steps_per_contact
+  o.steps_per_contact = 30;
+  o.adaptive_stiffness = true;
   return o;
 }
 

@@ -72,6 +72,8 @@ TEST(ParticleEngineLammps, CollisionRuleCheckMeasuresTheEnginesOwnContact) {
     SCOPED_TRACE(r);
     LammpsEngineOptions options;
     options.restitution = r;
+    options.max_overlap = 0.01;  // the case schema's defaults
+    options.steps_per_contact = 30;
     LammpsEngine engine(options);
     const CollisionRuleCheck check = engine.check_collision_rule();
     EXPECT_EQ(check.restitution,
@@ -93,6 +95,8 @@ TEST(ParticleEngineLammps, AnEnsembleSharesOneEngine) {
   spec.t_end = 2.0;
   spec.sample_interval = 1.0;
   spec.bins = 5;
+  spec.kernel = "bin";
+  spec.seed = 1;
   const MdRunResult first = run_md(spec, *engine, nullptr);
   const auto after_first = numbers(engine->details());
   spec.seed = 2;

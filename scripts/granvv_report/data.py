@@ -363,6 +363,9 @@ class Run:
         return [(eng, self.summary[eng]) for eng in ("hydro", "md", "compare")
                 if isinstance(self.summary.get(eng), dict) and self.summary[eng]]
 
+    def has_hydro(self):
+        return bool(self.hydro_ts or self.hydro_fields or self.summary.get("hydro"))
+
     def has_md(self):
         return bool(self.md_group or self.md_ts or self.md_fields or self.summary.get("md"))
 

@@ -83,12 +83,10 @@ def build(outdir, strict=False):
         return build_sweep(outdir, strict)
     run = Run(outdir)
     run.figdir = figure_folder(run.outdir)
-    has_md, has_cmp = run.has_md(), run.has_compare()
-    # no particle run: no MD entries at all; no comparison: no side-by-side entries
+    ran = {"hydro": run.has_hydro(), "md": run.has_md(), "compare": run.has_compare()}
+    # a model that did not run (no hydro, no particles, no comparison) lists no entries at all
     figures, skipped, failed = draw_figures(
-        "run", run, run.figdir, strict,
-        list_skip=lambda spec: not ((spec.section == "md" and not has_md)
-                                    or (spec.section == "compare" and not has_cmp)))
+        "run", run, run.figdir, strict, list_skip=lambda spec: ran[spec.section])
 
     if isinstance(run.config_text, str) and run.config_text.strip():
         config_block = run.config_text.rstrip()

@@ -142,14 +142,20 @@ def header_rows(run):
         ("reference", fmt(ref)),
         ("description", fmt(desc)) if desc else None,
         ("status", status_badge(run.top_summary("status"))),
-        ("hydro status", fmt(h.get("status"))),
-        ("stop reason", fmt(h.get("stop_reason"))),
-        ("final time", fmt(num(h.get("t_final")))) if num(h.get("t_final")) is not None else None,
-        ("wall time (hydro)", Markup(f"{fmt(num(h.get('wall_seconds')), 3)} s") if num(h.get("wall_seconds")) is not None else fmt(None)),
-        ("cells", fmt(h.get("cells"))),
-        ("steps", fmt(h.get("steps"))),
-        ("cell-steps / s", fmt(num(h.get("cell_steps_per_second")), 3)),
     ]
+    if run.has_hydro():
+        rows += [
+            ("hydro status", fmt(h.get("status"))),
+            ("stop reason", fmt(h.get("stop_reason"))),
+            ("final time", fmt(num(h.get("t_final")))) if num(h.get("t_final")) is not None else None,
+            ("wall time (hydro)", Markup(f"{fmt(num(h.get('wall_seconds')), 3)} s") if num(h.get("wall_seconds")) is not None else fmt(None)),
+            ("cells", fmt(h.get("cells"))),
+            ("steps", fmt(h.get("steps"))),
+            ("cell-steps / s", fmt(num(h.get("cell_steps_per_second")), 3)),
+        ]
+    else:
+        disabled = str(run.config("hydro.enabled")).lower() == "false"
+        rows.append(("hydro", fmt("not run" + (" (hydro.enabled = false)" if disabled else ""))))
     md = run.md_summary()
     md_attrs = (run.md_group or {}).get("attrs") or {}
     if isinstance(md, dict) or md_attrs:

@@ -1,0 +1,38 @@
+// The particles as a model of the ladder (app/model.hpp).
+#include "app/model.hpp"
+
+namespace granvv::app {
+
+ParticleModel::ParticleModel(MdScene scene, md::ParticleEngine& engine, Progress progress)
+    : scene_(std::move(scene)), engine_(engine), progress_(std::move(progress)) {}
+
+std::string ParticleModel::name() const {
+  return "particles/" + scene_.engine;
+}
+
+fields::ModelResult ParticleModel::run() {
+  outcome_ = run_md_scene(scene_, engine_, progress_);
+  std::vector<fields::FieldSeries> members;
+  for (const auto& run : outcome_.runs) members.push_back(run.fields);
+  return particle_result(
+      scene_, outcome_,
+      compare::ensemble_mean_fields(members, scaled_units(scene_.spec.scene)).fields);
+}
+
+compare::ScaledUnits scaled_units(const md::ParticleScene& scene) {
+  return {scene.box_length, scene.number_density(), scene.box_length};
+}
+
+fields::ModelResult particle_result(const MdScene& scene, const MdOutcome& out,
+                                    fields::FieldSeries mean_fields) {
+  fields::ModelResult r;
+  r.model = "particles/" + scene.engine;
+  r.fields = std::move(mean_fields);
+  const auto& sc = scene.spec.scene;
+  r.observables.push_back(
+      {"haff_t0", sc.scaled_time(out.haff.t0), sc.scaled_time(out.haff.t0_error)});
+  r.cost = out.cost;
+  return r;
+}
+
+}  // namespace granvv::app
