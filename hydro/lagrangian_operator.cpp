@@ -4,11 +4,17 @@
 
 namespace granvv::hydro {
 
-void cell_widths(const LagrangianState& s, std::vector<double>& widths) {
-  const int n = s.cells();
-  widths.resize(n);
-  for (int i = 0; i < n; ++i) widths[i] = cell_width(s, i);
+namespace {
+
+// Periodic neighbours of index i on n points.
+inline int left_of(int i, int n) {
+  return i == 0 ? n - 1 : i - 1;
 }
+inline int right_of(int i, int n) {
+  return i + 1 < n ? i + 1 : 0;
+}
+
+}  // namespace
 
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     : closure_(closure),
@@ -22,6 +28,7 @@ LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
       vy_mid_(cells),
       dv_mid_(cells),
       work_(cells),
+      inertia_(cells),
       shear_(cells) {}
 
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
@@ -33,8 +40,11 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   out.shear_coupling.resize(n_);
   out.heat_coupling.resize(n_);
   out.acoustic_coupling.resize(n_);
-  out.reference_dv.assign(n_, 0.0);
-  if (!reference_dv.empty()) out.reference_dv = reference_dv;
+  if (reference_dv.empty()) {
+    out.reference_dv.assign(n_, 0.0);
+  } else {
+    out.reference_dv = reference_dv;
+  }
   for (int i = 0; i < n_; ++i) out.density[i] = cell_mass[i] / widths[i];
   closure_.cell_coefficients(out.density, T, out.cell);
   const CellCoefficients& cell = out.cell;
@@ -47,15 +57,16 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
   // over the centre-to-centre distance h_j.
   for (int j = 0; j < n_; ++j) {
-    const int l = (j + n_ - 1) % n_;
+    const int l = left_of(j, n_);
     const double kappa = 0.5 * (cell.conductivity[l] + cell.conductivity[j]);
     out.heat_coupling[j] = kappa / (0.5 * (widths[l] + widths[j]));
   }
 }
 
-bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoefficients& c,
-                                 double dt, LagrangianState& to) {
+bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
+                                 const FrozenCoefficients& c, double dt, PassFields& to) {
   const int n = n_;
+  const auto& m = from.cell_mass;
   const auto& a = c.viscous_coupling;
   const auto& a_xy = c.shear_coupling;
   const auto& p = c.cell.pressure;
@@ -63,20 +74,19 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
   const auto& alpha = c.acoustic_coupling;
   const auto& dv_ref = c.reference_dv;
   to.t = from.t + dt;
-  to.cell_mass = from.cell_mass;
-  to.node_xi = from.node_xi;
 
   // Momentum, paper Eq. 1b: mu_j dv_j/dt = P_j - P_{j-1} with, at the time-centred velocity
   // vbar = (v^n + v^{n+1})/2 and dv_i = vbar_{i+1} - vbar_i,
   //   P_i = -(p_i - alpha_i (dv_i - dv_ref_i)) + a_i dv_i.
   for (int j = 0; j < n; ++j) {
-    const int l = (j + n - 1) % n;
-    const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
-    diag_[j] = 2.0 * mu / dt + a[j] + alpha[j] + a[l] + alpha[l];
+    const int l = left_of(j, n);
+    const double mu = 0.5 * (m[l] + m[j]);
+    inertia_[j] = 2.0 * mu / dt;
+    diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
     upper_[j] = -(a[j] + alpha[j]);
     const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
     const double explicit_stress_l = -p[l] - alpha[l] * dv_ref[l];
-    rhs_[j] = 2.0 * mu / dt * from.node_v[j] + explicit_stress_j - explicit_stress_l;
+    rhs_[j] = inertia_[j] * from.node_v[j] + explicit_stress_j - explicit_stress_l;
   }
   if (!momentum_.factorize(diag_, upper_)) return false;
   momentum_.solve(rhs_, v_mid_);
@@ -84,11 +94,10 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
   if (transverse) {
     // Transverse momentum: shear stress a_xy_i (vy_{i+1} - vy_i) (docs/physics.md §6).
     for (int j = 0; j < n; ++j) {
-      const int l = (j + n - 1) % n;
-      const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
-      diag_[j] = 2.0 * mu / dt + a_xy[j] + a_xy[l];
+      const int l = left_of(j, n);
+      diag_[j] = inertia_[j] + a_xy[j] + a_xy[l];
       upper_[j] = -a_xy[j];
-      rhs_[j] = 2.0 * mu / dt * from.node_vy[j];
+      rhs_[j] = inertia_[j] * from.node_vy[j];
     }
     if (!shear_.factorize(diag_, upper_)) return false;
     shear_.solve(rhs_, vy_mid_);
@@ -99,39 +108,46 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
   for (int j = 0; j < n; ++j) {
     to.node_x[j] = from.node_x[j] + dt * v_mid_[j];
     to.node_v[j] = 2.0 * v_mid_[j] - from.node_v[j];
-    if (transverse) to.node_vy[j] = 2.0 * vy_mid_[j] - from.node_vy[j];
+  }
+  if (transverse) {
+    for (int j = 0; j < n; ++j) to.node_vy[j] = 2.0 * vy_mid_[j] - from.node_vy[j];
   }
 
   // Energy, paper Eq. 2: m_i dT_i/dt = P_i (vbar_{i+1} - vbar_i) + [viscous heating by v_y]
   // + conduction, with the same P_i as the momentum step (exact energy exchange) and
   // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}).
   for (int i = 0; i < n; ++i) {
-    const int r = (i + 1) % n;
+    const int r = right_of(i, n);
     const double dv = v_mid_[r] - v_mid_[i];
     dv_mid_[i] = dv;
     work_[i] = (-p[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
-    if (transverse) {
-      const double dvy = vy_mid_[r] - vy_mid_[i];
+  }
+  if (transverse) {
+    for (int i = 0; i < n; ++i) {
+      const double dvy = vy_mid_[right_of(i, n)] - vy_mid_[i];
       work_[i] += a_xy[i] * dvy * dvy;
     }
   }
-  const auto& T = from.cell_T;
+  const auto& T = T_from;
   for (int i = 0; i < n; ++i) {
-    const int l = (i + n - 1) % n, r = (i + 1) % n;
+    const int l = left_of(i, n), r = right_of(i, n);
     const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
-    diag_[i] = from.cell_mass[i] / dt + 0.5 * (b[r] + b[i]);
+    const double heat_capacity = m[i] / dt;
+    diag_[i] = heat_capacity + 0.5 * (b[r] + b[i]);
     upper_[i] = -0.5 * b[r];
-    rhs_[i] = from.cell_mass[i] / dt * T[i] + work_[i] + 0.5 * conduction;
+    rhs_[i] = heat_capacity * T[i] + work_[i] + 0.5 * conduction;
   }
   if (!energy_.factorize(diag_, upper_)) return false;
   energy_.solve(rhs_, to.cell_T);
   last_dT_ = 0.0;
+  bool physical = true;
   for (int i = 0; i < n; ++i) {
-    if (!(to.cell_T[i] > 0.0) || !std::isfinite(to.cell_T[i])) return false;
+    physical = physical && to.cell_T[i] > 0.0 && std::isfinite(to.cell_T[i]);
     last_dT_ = std::max(last_dT_, std::abs(to.cell_T[i] / T[i] - 1.0));
   }
+  if (!physical) return false;
   for (int i = 0; i < n; ++i) {
-    if (!(cell_width(to, i) > 0.0)) return false;  // a node overtook its neighbour
+    if (!(cell_width(to.node_x, i) > 0.0)) return false;  // a node overtook its neighbour
   }
   return true;
 }
