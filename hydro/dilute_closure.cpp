@@ -15,6 +15,7 @@ void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::v
   out.viscosity.resize(cells);
   out.shear_viscosity.resize(cells);
   out.conductivity.resize(cells);
+#pragma GCC ivdep  // element i reads only element i
   for (size_t i = 0; i < cells; ++i) {
     const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
     out.pressure[i] = pressure(ni, Ti);

@@ -4,18 +4,6 @@
 
 namespace granvv::hydro {
 
-namespace {
-
-// Periodic neighbours of index i on n points.
-inline int left_of(int i, int n) {
-  return i == 0 ? n - 1 : i - 1;
-}
-inline int right_of(int i, int n) {
-  return i + 1 < n ? i + 1 : 0;
-}
-
-}  // namespace
-
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     : closure_(closure),
       n_(cells),
@@ -48,6 +36,7 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   for (int i = 0; i < n_; ++i) out.density[i] = cell_mass[i] / widths[i];
   closure_.cell_coefficients(out.density, T, out.cell);
   const CellCoefficients& cell = out.cell;
+#pragma GCC ivdep  // distinct arrays
   for (int i = 0; i < n_; ++i) {
     const double w = widths[i];
     out.viscous_coupling[i] = cell.viscosity[i] / w;
@@ -56,11 +45,13 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   }
   // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
   // over the centre-to-centre distance h_j.
-  for (int j = 0; j < n_; ++j) {
-    const int l = left_of(j, n_);
+  const auto heat_coupling = [&](int j, int l) {
     const double kappa = 0.5 * (cell.conductivity[l] + cell.conductivity[j]);
-    out.heat_coupling[j] = kappa / (0.5 * (widths[l] + widths[j]));
-  }
+    return kappa / (0.5 * (widths[l] + widths[j]));
+  };
+  out.heat_coupling[0] = heat_coupling(0, n_ - 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int j = 1; j < n_; ++j) out.heat_coupling[j] = heat_coupling(j, j - 1);
 }
 
 bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
@@ -78,8 +69,7 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   // Momentum, paper Eq. 1b: mu_j dv_j/dt = P_j - P_{j-1} with, at the time-centred velocity
   // vbar = (v^n + v^{n+1})/2 and dv_i = vbar_{i+1} - vbar_i,
   //   P_i = -(p_i - alpha_i (dv_i - dv_ref_i)) + a_i dv_i.
-  for (int j = 0; j < n; ++j) {
-    const int l = left_of(j, n);
+  const auto momentum_row = [&](int j, int l) {
     const double mu = 0.5 * (m[l] + m[j]);
     inertia_[j] = 2.0 * mu / dt;
     diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
@@ -87,18 +77,23 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
     const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
     const double explicit_stress_l = -p[l] - alpha[l] * dv_ref[l];
     rhs_[j] = inertia_[j] * from.node_v[j] + explicit_stress_j - explicit_stress_l;
-  }
+  };
+  momentum_row(0, n - 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int j = 1; j < n; ++j) momentum_row(j, j - 1);
   if (!momentum_.factorize(diag_, upper_)) return false;
   momentum_.solve(rhs_, v_mid_);
   const bool transverse = from.has_transverse();
   if (transverse) {
     // Transverse momentum: shear stress a_xy_i (vy_{i+1} - vy_i) (docs/physics.md §6).
-    for (int j = 0; j < n; ++j) {
-      const int l = left_of(j, n);
+    const auto shear_row = [&](int j, int l) {
       diag_[j] = inertia_[j] + a_xy[j] + a_xy[l];
       upper_[j] = -a_xy[j];
       rhs_[j] = inertia_[j] * from.node_vy[j];
-    }
+    };
+    shear_row(0, n - 1);
+#pragma GCC ivdep  // distinct arrays
+    for (int j = 1; j < n; ++j) shear_row(j, j - 1);
     if (!shear_.factorize(diag_, upper_)) return false;
     shear_.solve(rhs_, vy_mid_);
   }
@@ -116,35 +111,44 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   // Energy, paper Eq. 2: m_i dT_i/dt = P_i (vbar_{i+1} - vbar_i) + [viscous heating by v_y]
   // + conduction, with the same P_i as the momentum step (exact energy exchange) and
   // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}).
-  for (int i = 0; i < n; ++i) {
-    const int r = right_of(i, n);
+  const auto work = [&](int i, int r) {
     const double dv = v_mid_[r] - v_mid_[i];
     dv_mid_[i] = dv;
     work_[i] = (-p[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
-  }
+  };
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 0; i + 1 < n; ++i) work(i, i + 1);
+  work(n - 1, 0);
   if (transverse) {
-    for (int i = 0; i < n; ++i) {
-      const double dvy = vy_mid_[right_of(i, n)] - vy_mid_[i];
+    const auto shear_heating = [&](int i, int r) {
+      const double dvy = vy_mid_[r] - vy_mid_[i];
       work_[i] += a_xy[i] * dvy * dvy;
-    }
+    };
+#pragma GCC ivdep  // distinct arrays
+    for (int i = 0; i + 1 < n; ++i) shear_heating(i, i + 1);
+    shear_heating(n - 1, 0);
   }
   const auto& T = T_from;
-  for (int i = 0; i < n; ++i) {
-    const int l = left_of(i, n), r = right_of(i, n);
+  const auto energy_row = [&](int i, int l, int r) {
     const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
     const double heat_capacity = m[i] / dt;
     diag_[i] = heat_capacity + 0.5 * (b[r] + b[i]);
     upper_[i] = -0.5 * b[r];
     rhs_[i] = heat_capacity * T[i] + work_[i] + 0.5 * conduction;
-  }
+  };
+  energy_row(0, n - 1, 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 1; i + 1 < n; ++i) energy_row(i, i - 1, i + 1);
+  energy_row(n - 1, n - 2, 0);
   if (!energy_.factorize(diag_, upper_)) return false;
   energy_.solve(rhs_, to.cell_T);
-  last_dT_ = 0.0;
+  double largest_change = 0.0;
   bool physical = true;
   for (int i = 0; i < n; ++i) {
     physical = physical && to.cell_T[i] > 0.0 && std::isfinite(to.cell_T[i]);
-    last_dT_ = std::max(last_dT_, std::abs(to.cell_T[i] / T[i] - 1.0));
+    largest_change = std::max(largest_change, std::abs(to.cell_T[i] / T[i] - 1.0));
   }
+  last_dT_ = largest_change;
   if (!physical) return false;
   for (int i = 0; i < n; ++i) {
     if (!(cell_width(to.node_x, i) > 0.0)) return false;  // a node overtook its neighbour
