@@ -22,7 +22,7 @@ LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
                                 double dt, const std::vector<double>& reference_dv,
-                                FrozenCoefficients& out) const {
+                                FrozenCoefficients& out) {
   out.density.resize(n_);
   out.viscous_coupling.resize(n_);
   out.shear_coupling.resize(n_);
@@ -33,21 +33,26 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   } else {
     out.reference_dv = reference_dv;
   }
-  for (int i = 0; i < n_; ++i) out.density[i] = cell_mass[i] / widths[i];
-  closure_.cell_coefficients(out.density, T, out.cell);
-  const CellCoefficients& cell = out.cell;
+  inverse_width_.resize(n_);
 #pragma GCC ivdep  // distinct arrays
   for (int i = 0; i < n_; ++i) {
-    const double w = widths[i];
-    out.viscous_coupling[i] = cell.viscosity[i] / w;
-    out.shear_coupling[i] = cell.shear_viscosity[i] / w;
-    out.acoustic_coupling[i] = 0.5 * cell.adiabatic_modulus[i] * dt / w;
+    inverse_width_[i] = 1.0 / widths[i];
+    out.density[i] = cell_mass[i] * inverse_width_[i];
+  }
+  closure_.cell_coefficients(out.density, T, out.cell);
+  const CellCoefficients& cell = out.cell;
+  const double half_dt = 0.5 * dt;
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 0; i < n_; ++i) {
+    const double inverse_w = inverse_width_[i];
+    out.viscous_coupling[i] = cell.viscosity[i] * inverse_w;
+    out.shear_coupling[i] = cell.shear_viscosity[i] * inverse_w;
+    out.acoustic_coupling[i] = half_dt * cell.adiabatic_modulus[i] * inverse_w;
   }
   // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
-  // over the centre-to-centre distance h_j.
+  // over the centre-to-centre distance h_j = (dx_{j-1} + dx_j)/2 (the halves cancel exactly).
   const auto heat_coupling = [&](int j, int l) {
-    const double kappa = 0.5 * (cell.conductivity[l] + cell.conductivity[j]);
-    return kappa / (0.5 * (widths[l] + widths[j]));
+    return (cell.conductivity[l] + cell.conductivity[j]) / (widths[l] + widths[j]);
   };
   out.heat_coupling[0] = heat_coupling(0, n_ - 1);
 #pragma GCC ivdep  // distinct arrays
@@ -65,13 +70,14 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   const auto& alpha = c.acoustic_coupling;
   const auto& dv_ref = c.reference_dv;
   to.t = from.t + dt;
+  const double inverse_dt = 1.0 / dt;
 
   // Momentum, paper Eq. 1b: mu_j dv_j/dt = P_j - P_{j-1} with, at the time-centred velocity
   // vbar = (v^n + v^{n+1})/2 and dv_i = vbar_{i+1} - vbar_i,
   //   P_i = -(p_i - alpha_i (dv_i - dv_ref_i)) + a_i dv_i.
   const auto momentum_row = [&](int j, int l) {
     const double mu = 0.5 * (m[l] + m[j]);
-    inertia_[j] = 2.0 * mu / dt;
+    inertia_[j] = 2.0 * mu * inverse_dt;
     diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
     upper_[j] = -(a[j] + alpha[j]);
     const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
@@ -131,7 +137,7 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   const auto& T = T_from;
   const auto energy_row = [&](int i, int l, int r) {
     const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
-    const double heat_capacity = m[i] / dt;
+    const double heat_capacity = m[i] * inverse_dt;
     diag_[i] = heat_capacity + 0.5 * (b[r] + b[i]);
     upper_[i] = -0.5 * b[r];
     rhs_[i] = heat_capacity * T[i] + work_[i] + 0.5 * conduction;
@@ -145,15 +151,13 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   double largest_change = 0.0;
   bool physical = true;
   for (int i = 0; i < n; ++i) {
-    physical = physical && to.cell_T[i] > 0.0 && std::isfinite(to.cell_T[i]);
+    physical &= to.cell_T[i] > 0.0 && std::isfinite(to.cell_T[i]);
     largest_change = std::max(largest_change, std::abs(to.cell_T[i] / T[i] - 1.0));
   }
   last_dT_ = largest_change;
-  if (!physical) return false;
-  for (int i = 0; i < n; ++i) {
-    if (!(cell_width(to.node_x, i) > 0.0)) return false;  // a node overtook its neighbour
-  }
-  return true;
+  // No node may overtake its neighbour.
+  for (int i = 0; i + 1 < n; ++i) physical &= to.node_x[i + 1] > to.node_x[i];
+  return physical && cell_width(to.node_x, n - 1) > 0.0;
 }
 
 }  // namespace granvv::hydro

@@ -47,7 +47,7 @@ class LagrangianOperator {
   // pressure linearised about the velocity differences reference_dv (empty: zero).
   void freeze(const std::vector<double>& cell_mass, const std::vector<double>& widths,
               const std::vector<double>& T, double dt, const std::vector<double>& reference_dv,
-              FrozenCoefficients& out) const;
+              FrozenCoefficients& out);
   // Velocity differences vbar_{i+1} - vbar_i of the time-centred velocity of the last advance().
   const std::vector<double>& last_velocity_differences() const { return dv_mid_; }
 
@@ -67,7 +67,8 @@ class LagrangianOperator {
   int n_;
   PeriodicTridiagonalSolver momentum_, energy_;
   std::vector<double> diag_, upper_, rhs_, v_mid_, vy_mid_, dv_mid_, work_;
-  std::vector<double> inertia_;  // 2 mu_j / dt per node
+  std::vector<double> inertia_;        // 2 mu_j / dt per node
+  std::vector<double> inverse_width_;  // 1 / dx_i per cell
   PeriodicTridiagonalSolver shear_;
   double last_dT_ = 0.0;
 };
