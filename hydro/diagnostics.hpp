@@ -21,6 +21,8 @@ struct Diagnostics {
   double energy() const { return energy_thermal + energy_kinetic + energy_kinetic_y; }
 };
 
+// cells: the state's widths and densities (measure_cells).
+Diagnostics diagnose(const LagrangianState& s, const CellGeometry& cells);
 Diagnostics diagnose(const LagrangianState& s);
 
 }  // namespace granvv::hydro

@@ -15,14 +15,16 @@ void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::v
   out.viscosity.resize(cells);
   out.shear_viscosity.resize(cells);
   out.conductivity.resize(cells);
+#pragma GCC ivdep  // element i reads only element i
   for (size_t i = 0; i < cells; ++i) {
     const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
     out.pressure[i] = pressure(ni, Ti);
     out.adiabatic_modulus[i] = adiabatic_modulus(ni, Ti);
-    const double eta = viscosity(Ti);
+    const double sqrt_T = std::sqrt(Ti);
+    const double eta = viscosity_of_root(sqrt_T);
     out.viscosity[i] = eta;
     out.shear_viscosity[i] = eta;
-    out.conductivity[i] = conductivity(Ti);
+    out.conductivity[i] = conductivity_of_root(sqrt_T);
   }
 }
 

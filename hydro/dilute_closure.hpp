@@ -20,8 +20,8 @@ class DiluteClosure final : public Closure {
   static double pressure(double n, double T) { return n * T; }
   static double adiabatic_modulus(double n, double T) { return 2.0 * pressure(n, T); }
   static double sound_speed(double T) { return std::sqrt(2.0 * T); }
-  double viscosity(double T) const { return 0.25 * physics_.K * std::sqrt(T); }
-  double conductivity(double T) const { return physics_.K * std::sqrt(T); }
+  double viscosity(double T) const { return viscosity_of_root(std::sqrt(T)); }
+  double conductivity(double T) const { return conductivity_of_root(std::sqrt(T)); }
   // c = 8q/K of the sink Lambda = c n T^{3/2}.
   double cooling_coefficient() const { return cooling_coefficient_; }
   double cooling_rate(double n, double T) const {
@@ -42,6 +42,10 @@ class DiluteClosure final : public Closure {
   HcsLinearisation hcs_linearisation() const override;
 
  private:
+  // eta and kappa from T^{1/2}, which they share.
+  double viscosity_of_root(double sqrt_T) const { return 0.25 * physics_.K * sqrt_T; }
+  double conductivity_of_root(double sqrt_T) const { return physics_.K * sqrt_T; }
+
   Physics physics_;
   double cooling_coefficient_;
 };

@@ -50,7 +50,9 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
   HydroIntegrator integrator(closure, s.cells());
   TimeStepLimiter limiter(closure, control.time_step);
   const double t0 = haff_time_scale(closure);
-  const Diagnostics d0 = diagnose(s);
+  CellGeometry cells;  // widths and densities of s, updated by every accepted step
+  measure_cells(s, cells);
+  const Diagnostics d0 = diagnose(s, cells);
   double cooled = 0.0;
   auto record = [&](double step, const Diagnostics& now) {
     result.series.record({s.t, step, now, cooled, haff_temperature(s.t, t0)});
@@ -81,7 +83,7 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
       result.stop_reason = "end time reached";
       break;
     }
-    limit = limiter.limit(s);
+    limit = limiter.limit(s, cells);
     if (heating_limit < limit.dt) limit = {heating_limit, "heating"};
     double dt = limit.dt;
     bool clamped = false;
@@ -94,7 +96,7 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
 
     StepOutcome step;
     for (int attempt = 0; attempt < 30; ++attempt) {
-      step = integrator.step(s, dt);
+      step = integrator.step(s, dt, cells);
       if (step.accepted) break;
       ++result.rejected_steps;
       dt *= 0.5;
@@ -116,7 +118,7 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
     heating_limit = std::max(heating_limit, 0.5 * dt);
 
     const Diagnostics prev = d;
-    d = diagnose(s);
+    d = diagnose(s, cells);
     drift(d);
     for (double level : control.crossing_densities) {
       if (prev.n_max < level && d.n_max >= level && !result.crossing_times.count(level)) {

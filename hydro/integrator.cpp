@@ -4,49 +4,64 @@
 
 namespace granvv::hydro {
 
-double HydroIntegrator::cool_cells(LagrangianState& s, double dt) {
-  const int cells = s.cells();
-  density_.resize(cells);
-  for (int i = 0; i < cells; ++i) density_[i] = s.cell_mass[i] / cell_width(s, i);
-  closure_.cool(density_, s.cell_T, dt, cooled_T_);
+namespace {
+
+// Energy sum m_i (T_i - T'_i) removed by cooling T to T'.
+double energy_removed(const std::vector<double>& cell_mass, const std::vector<double>& T,
+                      const std::vector<double>& cooled) {
   double removed = 0.0;
-  for (int i = 0; i < cells; ++i) {
-    removed += s.cell_mass[i] * (s.cell_T[i] - cooled_T_[i]);
-    s.cell_T[i] = cooled_T_[i];
-  }
+  for (size_t i = 0; i < T.size(); ++i) removed += cell_mass[i] * (T[i] - cooled[i]);
   return removed;
 }
+
+}  // namespace
 
 HydroIntegrator::HydroIntegrator(const Closure& closure, int cells)
     : closure_(closure), op_(closure, cells) {}
 
-StepOutcome HydroIntegrator::step(LagrangianState& s, double dt) {
+StepOutcome HydroIntegrator::step(LagrangianState& s, double dt, CellGeometry& cells) {
   StepOutcome out;
-  start_ = s;
-  out.energy_cooled = cool_cells(start_, 0.5 * dt);
+  const int n = s.cells();
+  // C(dt/2): cooling at the start state's densities (cooling moves no node).
+  closure_.cool(cells.density, s.cell_T, 0.5 * dt, T_start_);
+  out.energy_cooled = energy_removed(s.cell_mass, s.cell_T, T_start_);
 
   // Predictor: coefficients at the start of the step.
-  cell_widths(start_, widths_);
-  op_.freeze(start_.cell_mass, widths_, start_.cell_T, dt, {}, coefficients_);
-  if (!op_.advance(start_, coefficients_, dt, predicted_)) return out;
+  op_.freeze(s.cell_mass, cells.width, T_start_, dt, {}, coefficients_);
+  if (!op_.advance(s, T_start_, coefficients_, dt, predicted_)) return out;
 
   // Corrector: coefficients at the mean of start and predicted states, the pressure
   // linearised about the predictor's compression.
-  cell_widths(predicted_, widths_mid_);
-  T_mid_.resize(widths_.size());
-  for (size_t i = 0; i < widths_.size(); ++i) {
-    widths_mid_[i] = 0.5 * (widths_[i] + widths_mid_[i]);
-    T_mid_[i] = 0.5 * (start_.cell_T[i] + predicted_.cell_T[i]);
+  cell_widths(predicted_.node_x, widths_mid_);
+  T_mid_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    widths_mid_[i] = 0.5 * (cells.width[i] + widths_mid_[i]);
+    T_mid_[i] = 0.5 * (T_start_[i] + predicted_.cell_T[i]);
   }
-  op_.freeze(start_.cell_mass, widths_mid_, T_mid_, dt, op_.last_velocity_differences(),
-             coefficients_);
-  if (!op_.advance(start_, coefficients_, dt, corrected_)) return out;
+  op_.freeze(s.cell_mass, widths_mid_, T_mid_, dt, op_.last_velocity_differences(), coefficients_);
+  if (!op_.advance(s, T_start_, coefficients_, dt, corrected_)) return out;
   out.relative_heating = op_.last_relative_temperature_change();
 
-  out.energy_cooled += cool_cells(corrected_, 0.5 * dt);
-  std::swap(s, corrected_);
+  // C(dt/2) at the end state's densities, measured once for this and every later pass.
+  cell_widths(corrected_.node_x, end_cells_.width);
+  end_cells_.density.resize(n);
+  for (int i = 0; i < n; ++i) end_cells_.density[i] = s.cell_mass[i] / end_cells_.width[i];
+  closure_.cool(end_cells_.density, corrected_.cell_T, 0.5 * dt, T_end_);
+  out.energy_cooled += energy_removed(s.cell_mass, corrected_.cell_T, T_end_);
+
+  s.t = corrected_.t;
+  std::swap(s.node_x, corrected_.node_x);
+  std::swap(s.node_v, corrected_.node_v);
+  std::swap(s.node_vy, corrected_.node_vy);
+  std::swap(s.cell_T, T_end_);
+  std::swap(cells, end_cells_);
   out.accepted = true;
   return out;
+}
+
+StepOutcome HydroIntegrator::step(LagrangianState& s, double dt) {
+  measure_cells(s, cells_);
+  return step(s, dt, cells_);
 }
 
 }  // namespace granvv::hydro

@@ -21,18 +21,19 @@ class HydroIntegrator {
  public:
   // The closure must outlive the integrator.
   HydroIntegrator(const Closure& closure, int cells);
-  // Advance s by dt. On rejection (T <= 0, tangled mesh) s is left unchanged.
+  // Advance s by dt; cells holds the widths and densities of s (measure_cells) and is
+  // updated with it. On rejection (T <= 0, tangled mesh) s and cells are left unchanged.
+  StepOutcome step(LagrangianState& s, double dt, CellGeometry& cells);
+  // The same, measuring the cells of s first.
   StepOutcome step(LagrangianState& s, double dt);
 
  private:
-  // Cool every cell exactly at its fixed density for dt; returns the energy removed.
-  double cool_cells(LagrangianState& s, double dt);
-
   const Closure& closure_;
   LagrangianOperator op_;
-  LagrangianState start_, predicted_, corrected_;
+  PassFields predicted_, corrected_;
   FrozenCoefficients coefficients_;
-  std::vector<double> widths_, widths_mid_, T_mid_, density_, cooled_T_;
+  CellGeometry cells_, end_cells_;
+  std::vector<double> T_start_, T_end_, widths_mid_, T_mid_;
 };
 
 }  // namespace granvv::hydro

@@ -4,12 +4,6 @@
 
 namespace granvv::hydro {
 
-void cell_widths(const LagrangianState& s, std::vector<double>& widths) {
-  const int n = s.cells();
-  widths.resize(n);
-  for (int i = 0; i < n; ++i) widths[i] = cell_width(s, i);
-}
-
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     : closure_(closure),
       n_(cells),
@@ -22,40 +16,53 @@ LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
       vy_mid_(cells),
       dv_mid_(cells),
       work_(cells),
+      inertia_(cells),
       shear_(cells) {}
 
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
                                 double dt, const std::vector<double>& reference_dv,
-                                FrozenCoefficients& out) const {
+                                FrozenCoefficients& out) {
   out.density.resize(n_);
   out.viscous_coupling.resize(n_);
   out.shear_coupling.resize(n_);
   out.heat_coupling.resize(n_);
   out.acoustic_coupling.resize(n_);
-  out.reference_dv.assign(n_, 0.0);
-  if (!reference_dv.empty()) out.reference_dv = reference_dv;
-  for (int i = 0; i < n_; ++i) out.density[i] = cell_mass[i] / widths[i];
+  if (reference_dv.empty()) {
+    out.reference_dv.assign(n_, 0.0);
+  } else {
+    out.reference_dv = reference_dv;
+  }
+  inverse_width_.resize(n_);
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 0; i < n_; ++i) {
+    inverse_width_[i] = 1.0 / widths[i];
+    out.density[i] = cell_mass[i] * inverse_width_[i];
+  }
   closure_.cell_coefficients(out.density, T, out.cell);
   const CellCoefficients& cell = out.cell;
+  const double half_dt = 0.5 * dt;
+#pragma GCC ivdep  // distinct arrays
   for (int i = 0; i < n_; ++i) {
-    const double w = widths[i];
-    out.viscous_coupling[i] = cell.viscosity[i] / w;
-    out.shear_coupling[i] = cell.shear_viscosity[i] / w;
-    out.acoustic_coupling[i] = 0.5 * cell.adiabatic_modulus[i] * dt / w;
+    const double inverse_w = inverse_width_[i];
+    out.viscous_coupling[i] = cell.viscosity[i] * inverse_w;
+    out.shear_coupling[i] = cell.shear_viscosity[i] * inverse_w;
+    out.acoustic_coupling[i] = half_dt * cell.adiabatic_modulus[i] * inverse_w;
   }
   // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
-  // over the centre-to-centre distance h_j.
-  for (int j = 0; j < n_; ++j) {
-    const int l = (j + n_ - 1) % n_;
-    const double kappa = 0.5 * (cell.conductivity[l] + cell.conductivity[j]);
-    out.heat_coupling[j] = kappa / (0.5 * (widths[l] + widths[j]));
-  }
+  // over the centre-to-centre distance h_j = (dx_{j-1} + dx_j)/2 (the halves cancel exactly).
+  const auto heat_coupling = [&](int j, int l) {
+    return (cell.conductivity[l] + cell.conductivity[j]) / (widths[l] + widths[j]);
+  };
+  out.heat_coupling[0] = heat_coupling(0, n_ - 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int j = 1; j < n_; ++j) out.heat_coupling[j] = heat_coupling(j, j - 1);
 }
 
-bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoefficients& c,
-                                 double dt, LagrangianState& to) {
+bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
+                                 const FrozenCoefficients& c, double dt, PassFields& to) {
   const int n = n_;
+  const auto& m = from.cell_mass;
   const auto& a = c.viscous_coupling;
   const auto& a_xy = c.shear_coupling;
   const auto& p = c.cell.pressure;
@@ -63,33 +70,36 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
   const auto& alpha = c.acoustic_coupling;
   const auto& dv_ref = c.reference_dv;
   to.t = from.t + dt;
-  to.cell_mass = from.cell_mass;
-  to.node_xi = from.node_xi;
+  const double inverse_dt = 1.0 / dt;
 
   // Momentum, paper Eq. 1b: mu_j dv_j/dt = P_j - P_{j-1} with, at the time-centred velocity
   // vbar = (v^n + v^{n+1})/2 and dv_i = vbar_{i+1} - vbar_i,
   //   P_i = -(p_i - alpha_i (dv_i - dv_ref_i)) + a_i dv_i.
-  for (int j = 0; j < n; ++j) {
-    const int l = (j + n - 1) % n;
-    const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
-    diag_[j] = 2.0 * mu / dt + a[j] + alpha[j] + a[l] + alpha[l];
+  const auto momentum_row = [&](int j, int l) {
+    const double mu = 0.5 * (m[l] + m[j]);
+    inertia_[j] = 2.0 * mu * inverse_dt;
+    diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
     upper_[j] = -(a[j] + alpha[j]);
     const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
     const double explicit_stress_l = -p[l] - alpha[l] * dv_ref[l];
-    rhs_[j] = 2.0 * mu / dt * from.node_v[j] + explicit_stress_j - explicit_stress_l;
-  }
+    rhs_[j] = inertia_[j] * from.node_v[j] + explicit_stress_j - explicit_stress_l;
+  };
+  momentum_row(0, n - 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int j = 1; j < n; ++j) momentum_row(j, j - 1);
   if (!momentum_.factorize(diag_, upper_)) return false;
   momentum_.solve(rhs_, v_mid_);
   const bool transverse = from.has_transverse();
   if (transverse) {
     // Transverse momentum: shear stress a_xy_i (vy_{i+1} - vy_i) (docs/physics.md §6).
-    for (int j = 0; j < n; ++j) {
-      const int l = (j + n - 1) % n;
-      const double mu = 0.5 * (from.cell_mass[l] + from.cell_mass[j]);
-      diag_[j] = 2.0 * mu / dt + a_xy[j] + a_xy[l];
+    const auto shear_row = [&](int j, int l) {
+      diag_[j] = inertia_[j] + a_xy[j] + a_xy[l];
       upper_[j] = -a_xy[j];
-      rhs_[j] = 2.0 * mu / dt * from.node_vy[j];
-    }
+      rhs_[j] = inertia_[j] * from.node_vy[j];
+    };
+    shear_row(0, n - 1);
+#pragma GCC ivdep  // distinct arrays
+    for (int j = 1; j < n; ++j) shear_row(j, j - 1);
     if (!shear_.factorize(diag_, upper_)) return false;
     shear_.solve(rhs_, vy_mid_);
   }
@@ -99,41 +109,55 @@ bool LagrangianOperator::advance(const LagrangianState& from, const FrozenCoeffi
   for (int j = 0; j < n; ++j) {
     to.node_x[j] = from.node_x[j] + dt * v_mid_[j];
     to.node_v[j] = 2.0 * v_mid_[j] - from.node_v[j];
-    if (transverse) to.node_vy[j] = 2.0 * vy_mid_[j] - from.node_vy[j];
+  }
+  if (transverse) {
+    for (int j = 0; j < n; ++j) to.node_vy[j] = 2.0 * vy_mid_[j] - from.node_vy[j];
   }
 
   // Energy, paper Eq. 2: m_i dT_i/dt = P_i (vbar_{i+1} - vbar_i) + [viscous heating by v_y]
   // + conduction, with the same P_i as the momentum step (exact energy exchange) and
   // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}).
-  for (int i = 0; i < n; ++i) {
-    const int r = (i + 1) % n;
+  const auto work = [&](int i, int r) {
     const double dv = v_mid_[r] - v_mid_[i];
     dv_mid_[i] = dv;
     work_[i] = (-p[i] + alpha[i] * (dv - dv_ref[i]) + a[i] * dv) * dv;
-    if (transverse) {
+  };
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 0; i + 1 < n; ++i) work(i, i + 1);
+  work(n - 1, 0);
+  if (transverse) {
+    const auto shear_heating = [&](int i, int r) {
       const double dvy = vy_mid_[r] - vy_mid_[i];
       work_[i] += a_xy[i] * dvy * dvy;
-    }
+    };
+#pragma GCC ivdep  // distinct arrays
+    for (int i = 0; i + 1 < n; ++i) shear_heating(i, i + 1);
+    shear_heating(n - 1, 0);
   }
-  const auto& T = from.cell_T;
-  for (int i = 0; i < n; ++i) {
-    const int l = (i + n - 1) % n, r = (i + 1) % n;
+  const auto& T = T_from;
+  const auto energy_row = [&](int i, int l, int r) {
     const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
-    diag_[i] = from.cell_mass[i] / dt + 0.5 * (b[r] + b[i]);
+    const double heat_capacity = m[i] * inverse_dt;
+    diag_[i] = heat_capacity + 0.5 * (b[r] + b[i]);
     upper_[i] = -0.5 * b[r];
-    rhs_[i] = from.cell_mass[i] / dt * T[i] + work_[i] + 0.5 * conduction;
-  }
+    rhs_[i] = heat_capacity * T[i] + work_[i] + 0.5 * conduction;
+  };
+  energy_row(0, n - 1, 1);
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 1; i + 1 < n; ++i) energy_row(i, i - 1, i + 1);
+  energy_row(n - 1, n - 2, 0);
   if (!energy_.factorize(diag_, upper_)) return false;
   energy_.solve(rhs_, to.cell_T);
-  last_dT_ = 0.0;
+  double largest_change = 0.0;
+  bool physical = true;
   for (int i = 0; i < n; ++i) {
-    if (!(to.cell_T[i] > 0.0) || !std::isfinite(to.cell_T[i])) return false;
-    last_dT_ = std::max(last_dT_, std::abs(to.cell_T[i] / T[i] - 1.0));
+    physical &= to.cell_T[i] > 0.0 && std::isfinite(to.cell_T[i]);
+    largest_change = std::max(largest_change, std::abs(to.cell_T[i] / T[i] - 1.0));
   }
-  for (int i = 0; i < n; ++i) {
-    if (!(cell_width(to, i) > 0.0)) return false;  // a node overtook its neighbour
-  }
-  return true;
+  last_dT_ = largest_change;
+  // No node may overtake its neighbour.
+  for (int i = 0; i + 1 < n; ++i) physical &= to.node_x[i + 1] > to.node_x[i];
+  return physical && cell_width(to.node_x, n - 1) > 0.0;
 }
 
 }  // namespace granvv::hydro

@@ -31,6 +31,13 @@ struct FrozenCoefficients {
   std::vector<double> reference_dv;  // dv_ref_i about which the pressure is linearised
 };
 
+// The fields one pass moves: node positions and velocities and cell temperatures at the end
+// of the pass. Cell masses and node labels stay those of the start state (Lagrangian mesh).
+struct PassFields {
+  double t = 0.0;
+  std::vector<double> node_x, node_v, node_vy, cell_T;  // node_vy empty: not carried
+};
+
 class LagrangianOperator {
  public:
   // The closure must outlive the operator.
@@ -40,16 +47,17 @@ class LagrangianOperator {
   // pressure linearised about the velocity differences reference_dv (empty: zero).
   void freeze(const std::vector<double>& cell_mass, const std::vector<double>& widths,
               const std::vector<double>& T, double dt, const std::vector<double>& reference_dv,
-              FrozenCoefficients& out) const;
+              FrozenCoefficients& out);
   // Velocity differences vbar_{i+1} - vbar_i of the time-centred velocity of the last advance().
   const std::vector<double>& last_velocity_differences() const { return dv_mid_; }
 
-  // One pass from `from` over dt with the frozen coefficients: solve the momentum
-  // equation (implicit viscosity) for the time-centred velocity, move the nodes, then the
-  // energy equation (compatible work, implicit conduction). `to` is overwritten.
-  // Returns false if the result is unphysical (T <= 0 or not finite).
-  bool advance(const LagrangianState& from, const FrozenCoefficients& c, double dt,
-               LagrangianState& to);
+  // One pass over dt with the frozen coefficients from the state `from` with cell temperatures
+  // T_from: solve the momentum equation (implicit viscosity) for the time-centred velocity,
+  // move the nodes, then the energy equation (compatible work, implicit conduction). `to` is
+  // overwritten. Returns false if the result is unphysical (T <= 0 or not finite, or a node
+  // overtook its neighbour).
+  bool advance(const LagrangianState& from, const std::vector<double>& T_from,
+               const FrozenCoefficients& c, double dt, PassFields& to);
 
   // Largest relative change of a cell temperature in the last advance().
   double last_relative_temperature_change() const { return last_dT_; }
@@ -59,11 +67,10 @@ class LagrangianOperator {
   int n_;
   PeriodicTridiagonalSolver momentum_, energy_;
   std::vector<double> diag_, upper_, rhs_, v_mid_, vy_mid_, dv_mid_, work_;
+  std::vector<double> inertia_;        // 2 mu_j / dt per node
+  std::vector<double> inverse_width_;  // 1 / dx_i per cell
   PeriodicTridiagonalSolver shear_;
   double last_dT_ = 0.0;
 };
-
-// Widths of all cells of a state.
-void cell_widths(const LagrangianState& s, std::vector<double>& widths);
 
 }  // namespace granvv::hydro

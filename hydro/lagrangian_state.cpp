@@ -4,22 +4,26 @@
 
 namespace granvv::hydro {
 
-double cell_width(const LagrangianState& s, int i) {
-  const int n = s.cells();
-  return i + 1 < n ? s.node_x[i + 1] - s.node_x[i] : s.node_x[0] + 1.0 - s.node_x[i];
-}
-
 double cell_centre(const LagrangianState& s, int i) {
   return s.node_x[i] + 0.5 * cell_width(s, i);
 }
 
-double node_mass(const LagrangianState& s, int j) {
-  const int n = s.cells();
-  return 0.5 * (s.cell_mass[(j + n - 1) % n] + s.cell_mass[j]);
-}
-
 double wrap_position(double x) {
   return x - std::floor(x + 0.5);
+}
+
+void cell_widths(const std::vector<double>& node_x, std::vector<double>& widths) {
+  const int n = static_cast<int>(node_x.size());
+  widths.resize(n);
+  for (int i = 0; i + 1 < n; ++i) widths[i] = node_x[i + 1] - node_x[i];
+  widths[n - 1] = cell_width(node_x, n - 1);
+}
+
+void measure_cells(const LagrangianState& s, CellGeometry& out) {
+  cell_widths(s.node_x, out.width);
+  const int n = s.cells();
+  out.density.resize(n);
+  for (int i = 0; i < n; ++i) out.density[i] = s.cell_mass[i] / out.width[i];
 }
 
 }  // namespace granvv::hydro

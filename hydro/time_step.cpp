@@ -8,21 +8,15 @@ namespace granvv::hydro {
 TimeStepLimiter::TimeStepLimiter(const Closure& closure, const TimeStepControl& control)
     : closure_(closure), control_(control) {}
 
-TimeStepLimit TimeStepLimiter::limit(const LagrangianState& s) {
+TimeStepLimit TimeStepLimiter::limit(const LagrangianState& s, const CellGeometry& cells) {
   const int n = s.cells();
-  widths_.resize(n);
-  density_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    widths_[i] = cell_width(s, i);
-    density_[i] = s.cell_mass[i] / widths_[i];
-  }
-  closure_.sound_speed(density_, s.cell_T, sound_speed_);
+  closure_.sound_speed(cells.density, s.cell_T, sound_speed_);
   double sound = std::numeric_limits<double>::infinity();
   double compression = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
-    const double w = widths_[i];
+    const double w = cells.width[i];
     sound = std::min(sound, w / sound_speed_[i]);
-    const double dv = std::abs(s.node_v[(i + 1) % n] - s.node_v[i]);
+    const double dv = std::abs(s.node_v[i + 1 < n ? i + 1 : 0] - s.node_v[i]);
     if (dv > 0.0) compression = std::min(compression, w / dv);
   }
   TimeStepLimit limit{control_.dt_max, "dt_max"};

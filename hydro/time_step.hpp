@@ -30,12 +30,13 @@ class TimeStepLimiter {
  public:
   // The closure must outlive the limiter.
   TimeStepLimiter(const Closure& closure, const TimeStepControl& control);
-  TimeStepLimit limit(const LagrangianState& s);
+  // cells: the widths and densities of s (measure_cells).
+  TimeStepLimit limit(const LagrangianState& s, const CellGeometry& cells);
 
  private:
   const Closure& closure_;
   TimeStepControl control_;
-  std::vector<double> widths_, density_, sound_speed_;
+  std::vector<double> sound_speed_;
 };
 
 }  // namespace granvv::hydro

@@ -12,8 +12,11 @@ The function returns the matplotlib figure, the "Measured" rows [(label, value, 
 optional note, and the values of the caption's {placeholders} (str.format). The page draws the figures
 section by section (the order of SECTIONS), each section in declaration order.
 """
+import multiprocessing
+import os
 import sys
 import traceback
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import matplotlib.pyplot as plt
@@ -68,29 +71,67 @@ def figures_of(page):
     return sorted((f for f in FIGURES if SECTIONS[f.section] == page), key=lambda f: order.index(f.section))
 
 
+def _draw(spec, run, figdir, strict):
+    """One figure drawn and saved: ("figure", dict for the templates), ("skip", why) or ("failed", why).
+    A skipped or failed figure's stale PNG of an earlier run is removed."""
+    try:
+        d = spec.draw(run)
+        img = save(d.fig, figdir, spec.file)
+        return "figure", {"id": spec.anchor, "title": spec.title, "img": img, "section": spec.section,
+                          "paper": Markup(spec.caption.format(**d.caption_values)),
+                          "measured": d.measured, "note": d.note}
+    except Skip as e:
+        outcome = "skip", str(e)
+    except Exception as e:  # noqa: BLE001 - one broken figure must not sink the page
+        plt.close("all")
+        outcome = "failed", f"{type(e).__name__}: {e}"
+        print(f"{PROG}: warning: {spec.file} failed: {type(e).__name__}: {e}", file=sys.stderr)
+        if strict:
+            traceback.print_exc()
+    if (figdir / spec.file).exists():
+        (figdir / spec.file).unlink()   # a stale figure of an earlier run must not linger
+    return outcome
+
+
+# The job of the worker processes, inherited through fork: (specs, run, figdir, strict).
+_JOB = None
+
+
+def _draw_in_worker(index):
+    specs, run, figdir, strict = _JOB
+    return _draw(specs[index], run, figdir, strict)
+
+
+def _workers(count):
+    """How many processes draw: one per core this process may use, at most one per figure."""
+    return max(1, min(count, len(os.sched_getaffinity(0))))
+
+
 def draw_figures(page, run, figdir, strict, list_skip=lambda spec: True):
     """Each figure of the page drawn: (figures, skipped, failed). A figure is a dict for the templates
-    (id, title, img, paper, measured, note, section). A skipped or failed figure's stale PNG of an
-    earlier run is removed; list_skip(spec) says whether a skip is worth listing on the page."""
-    figures, skipped, failed = [], [], []
-    for spec in figures_of(page):
+    (id, title, img, paper, measured, note, section). list_skip(spec) says whether a skip is worth
+    listing on the page. The figures are independent, so they are drawn in parallel by forked worker
+    processes (one per core; the Agg backend gives the same PNG bytes as drawing them in turn), and
+    collected in page order."""
+    global _JOB
+    specs = figures_of(page)
+    workers = _workers(len(specs))
+    if workers == 1:
+        outcomes = [_draw(spec, run, figdir, strict) for spec in specs]
+    else:
+        _JOB = (specs, run, figdir, strict)
         try:
-            d = spec.draw(run)
-            img = save(d.fig, figdir, spec.file)
-            figures.append({"id": spec.anchor, "title": spec.title, "img": img, "section": spec.section,
-                            "paper": Markup(spec.caption.format(**d.caption_values)),
-                            "measured": d.measured, "note": d.note})
-        except Skip as e:
+            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+                outcomes = list(pool.map(_draw_in_worker, range(len(specs))))
+        finally:
+            _JOB = None
+    figures, skipped, failed = [], [], []
+    for spec, (kind, value) in zip(specs, outcomes):
+        if kind == "figure":
+            figures.append(value)
+        elif kind == "skip":
             if list_skip(spec):
-                skipped.append((spec.file, str(e)))
-            if (figdir / spec.file).exists():
-                (figdir / spec.file).unlink()   # a stale figure of an earlier run must not linger
-        except Exception as e:  # noqa: BLE001 - one broken figure must not sink the page
-            plt.close("all")
-            failed.append((spec.file, f"{type(e).__name__}: {e}"))
-            print(f"{PROG}: warning: {spec.file} failed: {type(e).__name__}: {e}", file=sys.stderr)
-            if strict:
-                traceback.print_exc()
-            if (figdir / spec.file).exists():
-                (figdir / spec.file).unlink()
+                skipped.append((spec.file, value))
+        else:
+            failed.append((spec.file, value))
     return figures, skipped, failed
