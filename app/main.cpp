@@ -81,16 +81,6 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
-  if (*report_cmd) {
-    const std::filesystem::path d(report_dir);
-    if (!std::filesystem::is_regular_file(d / "results.h5") &&
-        !std::filesystem::is_regular_file(d / "sweep.json")) {
-      std::cerr << "granvv: error: neither " << report_dir << "/results.h5 nor " << report_dir
-                << "/sweep.json found; `granvv report DIR` needs the folder of a run or a "
-                   "sweep\n";
-      return 2;
-    }
-    return build_report(report_dir);
-  }
+  if (*report_cmd) return report_command(report_dir);
   return 2;
 }
