@@ -5,6 +5,7 @@
 
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
+#include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
@@ -60,7 +61,9 @@ int main(int argc, char** argv) {
 
   if (*run_cmd) {
     run.report = !no_report;
-    return run_command(run);
+    const int code = run_command(run);
+    if (hdf5_broken()) end_process_now(code);
+    return code;
   }
   if (*sweep_cmd) {
     sweep.report = !sweep_no_report;

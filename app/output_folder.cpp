@@ -2,6 +2,7 @@
 
 #include <H5Cpp.h>
 #include <fcntl.h>
+#include <mpi.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -214,6 +216,17 @@ void OutputFolder::keep_as_interrupted() {
   sync_to_disk(target_);
 }
 
+void OutputFolder::remove_staged_data() {
+  static const std::regex data(R"(results\.h5|particles(_m[0-9]+)?\.h5)");
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(staging_, ec)) {
+    if (std::regex_match(entry.path().filename().string(), data)) {
+      ::truncate(entry.path().c_str(), 0);
+      fs::remove(entry.path(), ec);
+    }
+  }
+}
+
 void OutputFolder::abandon() {
   if (g_commit_at_exit == this) g_commit_at_exit = nullptr;
   fs::remove_all(staging_);
@@ -236,6 +249,12 @@ std::vector<std::string> finish_interrupted_commits(const fs::path& dir) {
   }
 }
 
+namespace {
+
+bool g_hdf5_broken = false;
+
+}  // namespace
+
 void write_output(const Ranks& ranks, const fs::path& file, const std::function<void()>& write) {
   std::string error;
   if (ranks.writer()) {
@@ -248,6 +267,10 @@ void write_output(const Ranks& ranks, const fs::path& file, const std::function<
       if (err == ENOSPC || err == EDQUOT || err == EROFS || err == EIO) {
         error += " (" + std::string(std::strerror(err)) + ")";
       }
+      // HDF5 keeps the file open after such a failure; emptying it gives back its space for
+      // the summary that reports the failure.
+      ::truncate(file.c_str(), 0);
+      g_hdf5_broken = true;
     } catch (const std::exception& e) {
       error = "cannot write " + file.string() + ": " + e.what();
     }
@@ -260,6 +283,24 @@ void write_output(const Ranks& ranks, const fs::path& file, const std::function<
     throw std::runtime_error(
         ranks.writer() ? error : "the writer rank failed to write " + file.filename().string());
   }
+}
+
+void mark_hdf5_broken() {
+  g_hdf5_broken = true;
+}
+
+bool hdf5_broken() {
+  return g_hdf5_broken;
+}
+
+void end_process_now(int exit_code) {
+  std::cout.flush();
+  std::cerr.flush();
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  if (initialised && !finalised) MPI_Finalize();
+  std::_Exit(exit_code);
 }
 
 void stamp_run_id(const fs::path& h5_file, const std::string& run_id) {

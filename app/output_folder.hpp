@@ -56,6 +56,9 @@ class OutputFolder {
   void commit();
   // Keeps the previous outputs and moves the staging folder to DIR/interrupted-run.
   void keep_as_interrupted();
+  // Removes results.h5 and the particle files from the staging folder (emptied first, so that
+  // their space comes back even if a writer still holds them open).
+  void remove_staged_data();
   // Removes the staging folder (nothing of this run is kept).
   void abandon();
 
@@ -81,6 +84,15 @@ std::vector<std::string> finish_interrupted_commits(const std::filesystem::path&
 // the reason, HDF5 errors included, so that all ranks take the failure path together.
 void write_output(const Ranks& ranks, const std::filesystem::path& file,
                   const std::function<void()>& write);
+
+// After a failed HDF5 write (a full disk) the HDF5 library of Debian (1.10) holds a file it can
+// neither close nor forget: closing it again, as it does at program exit, crashes. The failure is
+// marked (write_output marks it; mark_hdf5_broken for writes made elsewhere), and the command
+// ends the process with end_process_now once its outputs are complete, which skips the
+// library's exit handlers (MPI is finalised first).
+void mark_hdf5_broken();
+bool hdf5_broken();
+[[noreturn]] void end_process_now(int exit_code);
 
 // Writes the string attribute run_id at the root of an existing HDF5 file.
 void stamp_run_id(const std::filesystem::path& h5_file, const std::string& run_id);

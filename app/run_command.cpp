@@ -122,19 +122,31 @@ int finish_outputs(OutputFolder& folder, nlohmann::json& summary, spdlog::logger
                    bool interrupted, bool report, int exit_code) {
   const fs::path work = folder.staging();
   const fs::path dir = folder.target();
+  std::string failure;
   try {
     if (fs::exists(work / "results.h5")) stamp_run_id(work / "results.h5", folder.run_id());
     write_file_atomically(work / "summary.json", summary_text(summary));
   } catch (const std::exception& e) {
-    log.error("cannot write the outputs ({}); {} keeps what it held before this run", e.what(),
-              dir.string());
-    folder.abandon();
-    return 1;
+    failure = e.what();
   } catch (const H5::Exception& e) {
-    log.error("cannot write the outputs ({}: {}); {} keeps what it held before this run",
-              e.getFuncName(), e.getDetailMsg(), dir.string());
-    folder.abandon();
-    return 1;
+    failure = e.getFuncName() + ": " + e.getDetailMsg();
+  }
+  if (!failure.empty()) {  // a full disk: the data files make room for an honest summary
+    folder.remove_staged_data();
+    const std::string earlier = summary.value("error", std::string());
+    summary["status"] = interrupted ? "interrupted" : "failed";
+    summary["error"] = (earlier.empty() ? "" : earlier + "; ") + "cannot write the outputs (" +
+                       failure + "); results.h5 and the particle files were removed to make room";
+    exit_code = interrupted ? exit_code : 1;
+    try {
+      write_file_atomically(work / "summary.json", summary_text(summary));
+    } catch (const std::exception& e) {
+      log.error("cannot write the outputs ({}); {} keeps what it held before this run", e.what(),
+                dir.string());
+      folder.abandon();
+      return 1;
+    }
+    log.error("{}", summary["error"].get<std::string>());
   }
   if (interrupted) {
     log.warn("the previous outputs in {} are kept; this run's are in {}", dir.string(),
@@ -326,6 +338,7 @@ int run_command(const RunOptions& options) {
     if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     interrupted = true;
   } catch (const H5::Exception& e) {
+    mark_hdf5_broken();
     const std::string message = e.getFuncName() + ": " + e.getDetailMsg();
     log->error("run failed: {}", message);
     summary["status"] = "failed";

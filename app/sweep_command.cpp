@@ -279,11 +279,10 @@ int sweep_command(const SweepOptions& options) {
                     {"exit_code", status},
                     {"reused", reused}};
       // An interrupted run leaves the point's previous outputs in place: they are not its result.
-      const json summary = interruption_signal() && !reused
-                               ? json(nullptr)
-                               : read_json_or_null(fs::path(run.out_dir) / "summary.json");
-      point["status"] =
-          interruption_signal() && !reused ? json("interrupted") : value_or_null(summary, "status");
+      const bool stopped = !reused && interruption_signal() && status == interrupted_exit_code();
+      const json summary =
+          stopped ? json(nullptr) : read_json_or_null(fs::path(run.out_dir) / "summary.json");
+      point["status"] = stopped ? json("interrupted") : value_or_null(summary, "status");
       point["md"] = value_or_null(summary, "md");
       point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
                                         ? summary["hydro"]["wall_seconds"]
@@ -301,6 +300,13 @@ int sweep_command(const SweepOptions& options) {
       sweep["wall_seconds"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       write_sweep_json(dir, sweep);
+      if (hdf5_broken()) {  // a full disk: the next points cannot be written either
+        sweep["status"] = "failed";
+        write_sweep_json(dir, sweep);
+        std::cerr << "granvv: error: sweep stopped after a failed write; "
+                  << (dir / "sweep.json").string() << " holds the points so far\n";
+        end_process_now(1);
+      }
     }
     if (interruption_signal()) {
       sweep["status"] = "interrupted";
