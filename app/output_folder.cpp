@@ -240,7 +240,13 @@ void OutputFolder::commit_at_exit(bool armed) {
 }
 
 std::vector<std::string> finish_interrupted_commits(const fs::path& dir) {
-  if (!fs::is_directory(dir)) return {};
+  std::error_code ec;
+  bool any = false;  // look before locking: a reader leaves a folder without leftovers as it is
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    any = any || (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0 &&
+                  fs::exists(entry.path() / kCommitMarker));
+  }
+  if (!any) return {};
   try {
     const FolderLock lock(dir);
     return clean_leftovers(dir, false);
@@ -301,6 +307,11 @@ void end_process_now(int exit_code) {
   MPI_Finalized(&finalised);
   if (initialised && !finalised) MPI_Finalize();
   std::_Exit(exit_code);
+}
+
+void start_results_file(const fs::path& h5_file) {
+  H5::Exception::dontPrint();
+  H5::H5File(h5_file.string(), H5F_ACC_TRUNC);
 }
 
 void stamp_run_id(const fs::path& h5_file, const std::string& run_id) {

@@ -94,6 +94,9 @@ void mark_hdf5_broken();
 bool hdf5_broken();
 [[noreturn]] void end_process_now(int exit_code);
 
+// Makes an empty HDF5 file, for the particle results of a run whose hydro part failed.
+void start_results_file(const std::filesystem::path& h5_file);
+
 // Writes the string attribute run_id at the root of an existing HDF5 file.
 void stamp_run_id(const std::filesystem::path& h5_file, const std::string& run_id);
 

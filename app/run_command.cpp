@@ -249,6 +249,7 @@ int run_command(const RunOptions& options) {
   if (writer) summary["run_id"] = folder->run_id();
   int exit_code = 0;
   bool interrupted = false;
+  std::optional<MdOutcome> md;  // kept when a later part fails
   try {
     write_output(ranks, work / "case.toml",
                  [&] { write_file_atomically(work / "case.toml", config.resolved_toml()); });
@@ -282,7 +283,6 @@ int run_command(const RunOptions& options) {
 
     // In a comparison the particles run first: the hydro starts from their coarse-grained
     // t = 0 fields (or the case's) and is sampled at their snapshot times.
-    std::optional<MdOutcome> md;
     if (compare_scene) {
       md = run_particle_engine();
       const auto& sc = md_scene->spec.scene;
@@ -351,6 +351,19 @@ int run_command(const RunOptions& options) {
     summary["error"] = e.what();
     if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     exit_code = 1;
+  }
+  // A particle run that finished is written even if a later part (the hydro, the comparison)
+  // failed: what was computed is kept.
+  if (md && !interrupted && !summary["md"].contains("particles")) {
+    try {
+      summary["md"] = md_summary(*md_scene, *md);
+      write_output(ranks, work / "results.h5", [&] {
+        if (!fs::exists(work / "results.h5")) start_results_file(work / "results.h5");
+        write_md_results(work / "results.h5", *md_scene, *md);
+      });
+    } catch (const std::exception& e) {
+      log->error("the finished particle results could not be written: {}", e.what());
+    }
   }
   if (!writer) return interrupted ? interrupted_exit_code() : exit_code;
   folder->commit_at_exit(false);

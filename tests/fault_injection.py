@@ -282,6 +282,21 @@ class FullDisk(FolderState):
             self.assertGreater((d / "summary.json").stat().st_size, 0)
 
 
+    def test_a_comparison_failing_after_its_particle_run_keeps_the_particle_results(self):
+        # The particles run first; the hydro's results.h5 then does not fit on the disk.
+        with Mount(self.tmp / "disk", "size=600k") as m:
+            self.assertTrue(m.ok)
+            d = m.where / "out"
+            r = run(MD_QUICK + ["--set", "hydro.cells=5000", "--out", str(d)])
+            self.assertEqual(r.returncode, 1, r.stderr)
+            s = self.assert_consistent(d, "failed")
+            self.assertIn("No space left on device", s["error"])
+            self.assertEqual(s["md"]["status"], "ok")
+            self.assertEqual(s["md"]["particles"], 400)
+            with h5py.File(d / "results.h5", "r") as f:
+                self.assertEqual(f["md/timeseries/T"].shape[0], 1)
+
+
 class Mpi(FolderState):
     def mpirun(self, args):
         return subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV, "run"]
