@@ -265,8 +265,18 @@ void write_output(const Ranks& ranks, const fs::path& file, const std::function<
   std::string error;
   if (ranks.writer()) {
     errno = 0;
+    const ssize_t open_before = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE);
     try {
       write();
+      // HDF5 reports a close that fails (its last flush, on a full disk) only on stderr, from
+      // a destructor: a file left open by the writer is that failure.
+      if (H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE) > open_before) {
+        const int err = errno;
+        error = "cannot write " + file.string() + ": HDF5 could not close it" +
+                (err ? " (" + std::string(std::strerror(err)) + ")" : std::string());
+        ::truncate(file.c_str(), 0);
+        g_hdf5_broken = true;
+      }
     } catch (const H5::Exception& e) {
       const int err = errno;
       error = "cannot write " + file.string() + ": " + e.getFuncName() + ": " + e.getDetailMsg();

@@ -54,6 +54,9 @@ class OutputFolder {
   // summary.json removed first and put in place last. A kill during the move leaves a commit
   // marker that the next run (or `granvv report`) uses to finish it. Throws std::runtime_error.
   void commit();
+  // True once commit() has written its marker (the replacement is then finished by whoever
+  // comes next, if this process cannot).
+  bool commit_begun() const { return done_; }
   // Keeps the previous outputs and moves the staging folder to DIR/interrupted-run.
   void keep_as_interrupted();
   // Removes results.h5 and the particle files from the staging folder (emptied first, so that

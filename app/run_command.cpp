@@ -124,11 +124,15 @@ int finish_outputs(OutputFolder& folder, nlohmann::json& summary, spdlog::logger
   const fs::path dir = folder.target();
   std::string failure;
   try {
-    if (fs::exists(work / "results.h5")) stamp_run_id(work / "results.h5", folder.run_id());
+    if (fs::exists(work / "results.h5")) {
+      write_output(Ranks{}, work / "results.h5",
+                   [&] { stamp_run_id(work / "results.h5", folder.run_id()); });
+    }
     write_file_atomically(work / "summary.json", summary_text(summary));
   } catch (const std::exception& e) {
     failure = e.what();
-  } catch (const H5::Exception& e) {
+  } catch (const H5::Exception& e) {  // write_output converts these; kept for safety
+    mark_hdf5_broken();
     failure = e.getFuncName() + ": " + e.getDetailMsg();
   }
   if (!failure.empty()) {  // a full disk: the data files make room for an honest summary
@@ -169,7 +173,9 @@ int finish_outputs(OutputFolder& folder, nlohmann::json& summary, spdlog::logger
   try {
     folder.commit();
   } catch (const std::exception& e) {
-    log.error("cannot move the outputs into {}: {}", dir.string(), e.what());
+    log.error("cannot move the outputs into {}: {}; {}", dir.string(), e.what(),
+              folder.commit_begun() ? "the next run or `granvv report` finishes the replacement"
+                                    : dir.string() + " keeps what it held before this run");
     return 1;
   }
   log.info("wrote {}", (dir / "summary.json").string());
