@@ -171,6 +171,14 @@ class Signals(FolderState):
                 time.sleep(after)
                 p.send_signal(sig)
                 p.communicate(timeout=TIMEOUT)
+                if not (d / "summary.json").exists():
+                    # Killed while it replaced the outputs: its commit marker lets a reader
+                    # finish the replacement.
+                    self.assertTrue(any((q / ".commit").exists() for q in d.iterdir()
+                                        if q.name.startswith(".granvv-staging")))
+                    r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True,
+                                       timeout=TIMEOUT)
+                    self.assertIn("finished replacing the outputs", r.stderr)
                 s = self.assert_consistent(d)
                 # Either the previous result, or a complete new one: never a mixture.
                 if s["run_id"] != previous:
