@@ -369,6 +369,22 @@ class Report(FolderState):
         self.assertEqual(len(lines), 1, r.stderr)
         self.assertIn("damaged", lines[0])
 
+    def test_a_replacement_cut_short_is_finished_by_report(self):
+        # The state of a run killed inside its commit: the old summary removed, the new outputs
+        # still in a staging folder with the commit marker (docs/outputs.md).
+        d, new = self.tmp / "out", self.tmp / "new"
+        self.good_run(d)
+        new_id = self.good_run(new, QUICK + ["--set", "hydro.cells=128"])
+        staging = d / ".granvv-staging-99999"
+        shutil.copytree(new, staging, ignore=shutil.ignore_patterns(".granvv.lock"))
+        (staging / ".commit").write_text("".join(p.name + "\n" for p in staging.iterdir()))
+        (d / "summary.json").unlink()
+        r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("finished replacing the outputs", r.stderr)
+        self.assertEqual(self.assert_consistent(d, "ok")["run_id"], new_id)
+        self.assertFalse(staging.exists())
+
     def test_results_of_another_run_are_refused(self):
         a, b = self.tmp / "a", self.tmp / "b"
         self.good_run(a)
