@@ -5,6 +5,7 @@
 
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
+#include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
@@ -60,7 +61,9 @@ int main(int argc, char** argv) {
 
   if (*run_cmd) {
     run.report = !no_report;
-    return run_command(run);
+    const int code = run_command(run);
+    if (hdf5_broken()) end_process_now(code);
+    return code;
   }
   if (*sweep_cmd) {
     sweep.report = !sweep_no_report;
@@ -81,16 +84,6 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
-  if (*report_cmd) {
-    const std::filesystem::path d(report_dir);
-    if (!std::filesystem::is_regular_file(d / "results.h5") &&
-        !std::filesystem::is_regular_file(d / "sweep.json")) {
-      std::cerr << "granvv: error: neither " << report_dir << "/results.h5 nor " << report_dir
-                << "/sweep.json found; `granvv report DIR` needs the folder of a run or a "
-                   "sweep\n";
-      return 2;
-    }
-    return build_report(report_dir);
-  }
+  if (*report_cmd) return report_command(report_dir);
   return 2;
 }

@@ -6,6 +6,7 @@
 
 #include "app/case_config.hpp"
 #include "app/data_directory.hpp"
+#include "app/output_folder.hpp"
 
 namespace granvv::app {
 
@@ -32,6 +33,17 @@ int build_report(const std::filesystem::path& dir) {
   const int status = std::system(command.c_str());
   if (status == -1) return 127;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+int report_command(const std::filesystem::path& dir) {
+  for (const auto& note : finish_interrupted_commits(dir)) std::cerr << "granvv: " << note << "\n";
+  if (!std::filesystem::is_regular_file(dir / "results.h5") &&
+      !std::filesystem::is_regular_file(dir / "sweep.json")) {
+    std::cerr << "granvv: error: neither " << dir.string() << "/results.h5 nor " << dir.string()
+              << "/sweep.json found; `granvv report DIR` needs the folder of a run or a sweep\n";
+    return 2;
+  }
+  return build_report(dir);
 }
 
 }  // namespace granvv::app

@@ -5,4 +5,9 @@ namespace granvv::app {
 // Rebuilds DIR/report.html and DIR/figures/ from DIR/results.h5 and DIR/summary.json with
 // scripts/report.py (Debian's /usr/bin/python3, or $GRANVV_PYTHON). Returns its exit code.
 int build_report(const std::filesystem::path& dir);
+
+// `granvv report DIR`: finishes a replacement of the outputs that a killed run left half done
+// (app/output_folder.hpp), then builds the report of the run or sweep in DIR. Exit 2 (one line)
+// if DIR holds neither results.h5 nor sweep.json.
+int report_command(const std::filesystem::path& dir);
 }  // namespace granvv::app

@@ -1,6 +1,6 @@
 #include "app/run_command.hpp"
 
-#include <mpi.h>
+#include <H5Cpp.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -18,12 +18,14 @@
 #include "app/compare_output.hpp"
 #include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/interruption.hpp"
 #include "app/md_output.hpp"
 #include "app/md_scene.hpp"
+#include "app/mpi_ranks.hpp"
+#include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
-#include "md_bridge/mpi_environment.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -61,6 +63,7 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       sc.physics().q, sc.unstable_modes(), scene.ensemble);
   auto last = std::chrono::steady_clock::now();
   const MdOutcome out = run_md_scene(scene, engine, [&](int member, const md::MdProgress& p) {
+    stop_if_interrupted();
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
     last = now;
@@ -84,6 +87,7 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
 HydroOutcome run_continuum(const HydroScene& scene, spdlog::logger& log) {
   auto last = std::chrono::steady_clock::now();  // first line after progress_seconds
   auto progress = [&](const hydro::Progress& p) {
+    stop_if_interrupted();
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - last).count() < scene.progress_seconds) return;
     last = now;
@@ -103,6 +107,82 @@ HydroOutcome run_continuum(const HydroScene& scene, spdlog::logger& log) {
              outcome.singularity->tau, outcome.singularity->n_min, outcome.singularity->n_max);
   }
   return outcome;
+}
+
+std::string summary_text(const nlohmann::json& summary) {
+  // Bytes that are not UTF-8 (in a folder or case name) are written as U+FFFD, not refused.
+  return summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+// The end of the output protocol (docs/outputs.md): the summary and the report are written into
+// the staging folder, which then replaces the previous outputs, or, for an interrupted run, is
+// kept beside them as interrupted-run/. If not even the summary can be written, nothing of this
+// run is kept and the previous outputs stay as they were.
+int finish_outputs(OutputFolder& folder, nlohmann::json& summary, spdlog::logger& log,
+                   bool interrupted, bool report, int exit_code) {
+  const fs::path work = folder.staging();
+  const fs::path dir = folder.target();
+  std::string failure;
+  try {
+    if (fs::exists(work / "results.h5")) {
+      write_output(Ranks{}, work / "results.h5",
+                   [&] { stamp_run_id(work / "results.h5", folder.run_id()); });
+    }
+    write_file_atomically(work / "summary.json", summary_text(summary));
+  } catch (const std::exception& e) {
+    failure = e.what();
+  } catch (const H5::Exception& e) {  // write_output converts these; kept for safety
+    mark_hdf5_broken();
+    failure = e.getFuncName() + ": " + e.getDetailMsg();
+  }
+  if (!failure.empty()) {  // a full disk: the data files make room for an honest summary
+    folder.remove_staged_data();
+    const std::string earlier = summary.value("error", std::string());
+    summary["status"] = interrupted ? "interrupted" : "failed";
+    summary["error"] = (earlier.empty() ? "" : earlier + "; ") + "cannot write the outputs (" +
+                       failure + "); results.h5 and the particle files were removed to make room";
+    exit_code = interrupted ? exit_code : 1;
+    try {
+      write_file_atomically(work / "summary.json", summary_text(summary));
+    } catch (const std::exception& e) {
+      log.error("cannot write the outputs ({}); {} keeps what it held before this run", e.what(),
+                dir.string());
+      folder.abandon();
+      return 1;
+    }
+    log.error("{}", summary["error"].get<std::string>());
+  }
+  if (interrupted) {
+    log.warn("the previous outputs in {} are kept; this run's are in {}", dir.string(),
+             (dir / "interrupted-run").string());
+    try {
+      folder.keep_as_interrupted();
+    } catch (const std::exception& e) {
+      log.error("cannot keep the interrupted run's outputs: {}", e.what());
+      folder.abandon();
+    }
+    return interrupted_exit_code();
+  }
+  if (report && fs::exists(work / "results.h5")) {
+    const int status = build_report(work);
+    if (status != 0) {
+      log.error("report script failed (exit {}); results.h5 and summary.json are complete", status);
+      exit_code = exit_code ? exit_code : 1;
+    }
+  }
+  try {
+    folder.commit();
+  } catch (const std::exception& e) {
+    log.error("cannot move the outputs into {}: {}; {}", dir.string(), e.what(),
+              folder.commit_begun() ? "the next run or `granvv report` finishes the replacement"
+                                    : dir.string() + " keeps what it held before this run");
+    return 1;
+  }
+  log.info("wrote {}", (dir / "summary.json").string());
+  if (report && fs::exists(dir / "report.html")) {
+    log.info("report: {}", (dir / "report.html").string());
+  }
+  return exit_code;
 }
 
 }  // namespace
@@ -130,43 +210,63 @@ int run_command(const RunOptions& options) {
   }
 
   // Under mpirun every rank runs the scene (the particle engine is collective); rank 0 alone
-  // writes the outputs and the log.
-  int rank = 0;
-  if (md_scene) {
-    md::MpiEnvironment::ensure();
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  }
-  const bool writer = rank == 0;
+  // writes, into the staging folder of the output protocol (app/output_folder.hpp), and every
+  // rank learns whether the folder could be opened.
+  const Ranks ranks = join_ranks(md_scene.has_value());
+  const bool writer = ranks.writer();
   const fs::path dir =
       options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
-  std::error_code ec;
-  if (writer) fs::create_directories(dir, ec);
-  if (ec) {
-    std::cerr << "granvv: error: cannot create output folder " << dir << ": " << ec.message()
-              << "\n";
+  std::optional<OutputFolder> folder;
+  std::string folder_error;
+  if (writer) {
+    try {
+      folder.emplace(dir);
+    } catch (const std::exception& e) {
+      folder_error = e.what();
+    }
+  }
+  if (!all_ranks_ok(ranks, folder_error.empty())) {
+    if (writer) std::cerr << "granvv: error: " << folder_error << "\n";
+    return 2;
+  }
+  // One rank can stop at its own safe point; several must not (the others would wait in a
+  // collective step), so under mpirun -np > 1 a signal keeps its default action.
+  if (ranks.size == 1) catch_interruptions();
+  const fs::path work = writer ? folder->staging() : fs::path();
+  std::shared_ptr<spdlog::logger> log;
+  try {
+    log = writer ? make_logger(work / "run.log", options.quiet)
+                 : std::make_shared<spdlog::logger>(
+                       "granvv", std::make_shared<spdlog::sinks::null_sink_mt>());
+  } catch (const std::exception& e) {
+    std::cerr << "granvv: error: cannot write " << (work / "run.log") << ": " << e.what() << "\n";
     return 1;
   }
-  auto log = writer ? make_logger(dir / "run.log", options.quiet)
-                    : std::make_shared<spdlog::logger>(
-                          "granvv", std::make_shared<spdlog::sinks::null_sink_mt>());
   log->info("granvv {} running case '{}' into {}", GRANVV_VERSION, config.name(), dir.string());
+  if (writer) {
+    for (const auto& note : folder->notes()) log->warn("{}", note);
+  }
   log->info("resolved configuration:\n{}", config.resolved_toml());
-  if (writer) write_file_atomically(dir / "case.toml", config.resolved_toml());
 
   nlohmann::json summary = {
       {"case", config.name()},      {"status", "failed"}, {"granvv_version", GRANVV_VERSION},
       {"output_dir", dir.string()}, {"hydro", nullptr},   {"md", nullptr},
       {"compare", nullptr}};
+  if (writer) summary["run_id"] = folder->run_id();
   int exit_code = 0;
+  bool interrupted = false;
+  std::optional<MdOutcome> md;  // kept when a later part fails
+  const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(),
+                         config.flattened()};
   try {
-    const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(),
-                           config.flattened()};
+    write_output(ranks, work / "case.toml",
+                 [&] { write_file_atomically(work / "case.toml", config.resolved_toml()); });
     // The particle engine; the summary on disk says "failed" until it returns, because the
     // Debian LAMMPS ends the process on any error inside a command (docs/physics.md §10).
     auto run_particle_engine = [&]() {
       summary["md"] = {{"status", "failed"}};
       md_scene->spec.creator_version = GRANVV_VERSION;
-      const auto engine = make_engine(*md_scene, writer ? dir.string() : "");
+      const auto engine = make_engine(*md_scene, writer ? work.string() : "");
       summary["md"]["error"] =
           "the process ended inside the particle run (see " +
           fs::path(engine->log_path()).filename().string() +
@@ -174,22 +274,27 @@ int run_command(const RunOptions& options) {
           "particle frames written so far";
       const nlohmann::json status_so_far = summary["status"];
       summary["status"] = "failed";
-      if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+      write_output(ranks, work / "summary.json",
+                   [&] { write_file_atomically(work / "summary.json", summary_text(summary)); });
+      if (writer) folder->commit_at_exit(true);
       summary["status"] = status_so_far;
       log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
       if (md_scene->spec.snapshot_interval > 0.0) {
-        md_scene->spec.h5md_path = (dir / "particles.h5").string();
+        md_scene->spec.h5md_path = (work / "particles.h5").string();
       }
-      return run_particles(*md_scene, *engine, scene.progress_seconds, *log);
+      MdOutcome particles = run_particles(*md_scene, *engine, scene.progress_seconds, *log);
+      if (writer) folder->commit_at_exit(false);
+      return particles;
     };
 
     // In a comparison the particles run first: the hydro starts from their coarse-grained
     // t = 0 fields (or the case's) and is sampled at their snapshot times. Each part's results
     // are written as soon as it has finished.
-    if (writer) create_results_file(dir / "results.h5", meta);
-    std::optional<MdOutcome> md;
+    write_output(ranks, work / "results.h5",
+                 [&] { create_results_file(work / "results.h5", meta); });
     auto finish_particles = [&]() {
-      if (writer) write_md_results(dir / "results.h5", *md_scene, *md);
+      write_output(ranks, work / "results.h5",
+                   [&] { write_md_results(work / "results.h5", *md_scene, *md); });
       summary["md"] = md_summary(*md_scene, *md);
     };
     if (compare_scene) {
@@ -216,7 +321,8 @@ int run_command(const RunOptions& options) {
     if (config.boolean("hydro.enabled")) {
       outcome = run_continuum(scene, *log);
       const auto& run = outcome->run;
-      if (writer) write_hydro_results(dir / "results.h5", scene, *outcome);
+      write_output(ranks, work / "results.h5",
+                   [&] { write_hydro_results(work / "results.h5", scene, *outcome); });
       summary["hydro"] = hydro_summary(scene, *outcome);
       summary["status"] = hydro::to_string(run.status);
       if (run.status == hydro::RunStatus::failed) {
@@ -236,13 +342,29 @@ int run_command(const RunOptions& options) {
     if (compare_scene) {
       const CompareOutcome compared =
           compare_engines(*compare_scene, scene, *outcome, *md_scene, *md);
-      if (writer) write_compare_results(dir / "results.h5", *compare_scene, *md_scene, compared);
+      write_output(ranks, work / "results.h5", [&] {
+        write_compare_results(work / "results.h5", *compare_scene, *md_scene, compared);
+      });
       summary["compare"] =
           compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);
       log->info("compare: {}", compared.verdict);
       log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
                 outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);
     }
+  } catch (const Interrupted& e) {
+    log->warn("run stopped: {}", e.what());
+    summary["status"] = "interrupted";
+    summary["error"] = e.what();
+    if (summary["md"].is_object()) summary["md"]["error"] = e.what();
+    interrupted = true;
+  } catch (const H5::Exception& e) {
+    mark_hdf5_broken();
+    const std::string message = e.getFuncName() + ": " + e.getDetailMsg();
+    log->error("run failed: {}", message);
+    summary["status"] = "failed";
+    summary["error"] = message;
+    if (summary["md"].is_object()) summary["md"]["error"] = message;
+    exit_code = 1;
   } catch (const std::exception& e) {
     log->error("run failed: {}", e.what());
     summary["status"] = "failed";
@@ -250,21 +372,26 @@ int run_command(const RunOptions& options) {
     if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     exit_code = 1;
   }
-  if (!writer) return exit_code;
-  write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
-  log->info("wrote {}", (dir / "summary.json").string());
-
-  if (options.report && fs::exists(dir / "results.h5")) {
-    const int status = build_report(dir);
-    if (status != 0) {
-      log->error("report script failed (exit {}); results.h5 and summary.json are complete",
-                 status);
-      exit_code = exit_code ? exit_code : 1;
-    } else {
-      log->info("report: {}", (dir / "report.html").string());
+  // A particle run that finished is kept even if a later part failed: a failed write removes
+  // the half-written results.h5 (app/output_folder.hpp), so its /md group is written again.
+  if (md && !interrupted && !fs::exists(work / "results.h5")) {
+    try {
+      write_output(ranks, work / "results.h5", [&] {
+        create_results_file(work / "results.h5", meta);
+        write_md_results(work / "results.h5", *md_scene, *md);
+      });
+    } catch (const std::exception& e) {
+      log->error("the finished particle results could not be written: {}", e.what());
     }
   }
-  return exit_code;
+  if (md && !interrupted && !summary["md"].contains("particles")) {
+    const nlohmann::json error = summary["md"].value("error", nlohmann::json());
+    summary["md"] = md_summary(*md_scene, *md);
+    if (!error.is_null()) summary["md"]["error"] = error;
+  }
+  if (!writer) return interrupted ? interrupted_exit_code() : exit_code;
+  folder->commit_at_exit(false);
+  return finish_outputs(*folder, summary, *log, interrupted, options.report, exit_code);
 }
 
 }  // namespace granvv::app

@@ -1,18 +1,23 @@
 #include "app/sweep_command.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "app/atomic_file.hpp"
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
 #include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/interruption.hpp"
 #include "app/json_numbers.hpp"
 #include "app/md_scene.hpp"
+#include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "compare/cooling_sweep.hpp"
@@ -89,6 +94,50 @@ json value_or_null(const json& j, const char* key) {
   return j.is_object() && j.contains(key) ? j[key] : json(nullptr);
 }
 
+json read_json_or_null(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) return nullptr;
+  try {
+    json j;
+    in >> j;
+    return j;
+  } catch (const json::exception&) {
+    return nullptr;
+  }
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A point folder holds a finished run of exactly this resolved case: a re-run of the sweep
+// keeps it instead of running it again.
+bool point_is_complete(const fs::path& point_dir, const std::string& resolved_toml) {
+  const json summary = read_json_or_null(point_dir / "summary.json");
+  const json status = value_or_null(summary, "status");
+  return (status == "ok" || status == "singularity") &&
+         read_text(point_dir / "case.toml") == resolved_toml;
+}
+
+// Two values that resolve to the same number, or that would share a folder, are one point.
+void refuse_repeated_values(const SweptKey& swept, const std::vector<double>& numeric_values) {
+  for (std::size_t i = 0; i < swept.values.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (numeric_values[i] == numeric_values[j] ||
+          folder_name(swept.key, swept.values[i]) == folder_name(swept.key, swept.values[j])) {
+        throw ConfigError("--set " + swept.key + "=...: the values " + swept.values[j] + " and " +
+                          swept.values[i] + " are the same point; give each value once");
+      }
+    }
+  }
+}
+
+void write_sweep_json(const fs::path& dir, const json& sweep) {
+  write_file_atomically(dir / "sweep.json",
+                        sweep.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+}
+
 // The regression on the restitution coefficient over the points that measured a Haff time.
 json cooling_analysis(const json& points, double power_r_min, double sigmas) {
   std::vector<compare::CoolingPoint> cooling;
@@ -158,6 +207,7 @@ int sweep_command(const SweepOptions& options) {
   SweptKey swept;
   std::string case_name;
   std::vector<double> numeric_values;  // each value as the case resolved it
+  std::vector<std::string> resolved;   // each point's resolved case (its case.toml)
   try {
     swept = split_sweep(options.sets, fixed);
     const CaseSource source = locate_case(options.case_name);
@@ -172,7 +222,9 @@ int sweep_command(const SweepOptions& options) {
       numeric_values.push_back(find_key_spec(swept.key)->type == ValueType::integer
                                    ? double(config.integer(swept.key))
                                    : config.real(swept.key));
+      resolved.push_back(config.resolved_toml());
     }
+    refuse_repeated_values(swept, numeric_values);
   } catch (const ConfigError& e) {
     std::cerr << "granvv: error: " << e.what() << "\n";
     return 2;
@@ -182,68 +234,90 @@ int sweep_command(const SweepOptions& options) {
   const fs::path dir = options.out_dir.empty()
                            ? fs::path("out") / (case_name + "-sweep-" + key_name)
                            : fs::path(options.out_dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    std::cerr << "granvv: error: cannot create output folder " << dir << ": " << ec.message()
-              << "\n";
-    return 1;
+  std::optional<FolderLock> lock;  // one sweep at a time in a folder
+  try {
+    lock.emplace(dir);
+  } catch (const OutputFolderError& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 2;
   }
+  catch_interruptions();
 
   // 2. One run per value; sweep.json is rewritten after every point, so a stopped sweep keeps
-  // what it finished.
+  // what it finished. Its status says "incomplete" until the sweep ends (it is true both while
+  // the sweep runs and after it was killed); a point that already holds a finished run of the
+  // same resolved case is kept, so a re-run resumes an interrupted sweep.
   const auto start = std::chrono::steady_clock::now();
   json sweep = {{"case", case_name},
                 {"key", swept.key},
                 {"values", swept.values},
                 {"fixed_sets", fixed},
                 {"granvv_version", GRANVV_VERSION},
-                {"status", "running"},
+                {"status", "incomplete"},
+                {"pid", ::getpid()},
                 {"points", json::array()},
                 {"cooling", nullptr}};
   int exit_code = 0;
-  for (std::size_t i = 0; i < swept.values.size(); ++i) {
-    const std::string& value = swept.values[i];
-    RunOptions run;
-    run.case_name = options.case_name;
-    run.out_dir = (dir / folder_name(swept.key, value)).string();
-    run.sets = fixed;
-    run.sets.push_back(swept.key + "=" + value);
-    run.quiet = options.quiet;
-    run.report = options.report;
-    std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
-              << " = " << value << " -> " << run.out_dir << "\n";
-    const int status = run_command(run);
-    json point = {{"value", numeric_values[i]},
-                  {"dir", fs::path(run.out_dir).filename().string()},
-                  {"exit_code", status}};
-    json summary;
-    std::ifstream in(fs::path(run.out_dir) / "summary.json");
-    if (in) {
-      try {
-        in >> summary;
-      } catch (const json::exception&) {
-        summary = nullptr;
+  try {
+    write_sweep_json(dir, sweep);
+    for (std::size_t i = 0; i < swept.values.size() && !interruption_signal(); ++i) {
+      const std::string& value = swept.values[i];
+      RunOptions run;
+      run.case_name = options.case_name;
+      run.out_dir = (dir / folder_name(swept.key, value)).string();
+      run.sets = fixed;
+      run.sets.push_back(swept.key + "=" + value);
+      run.quiet = options.quiet;
+      run.report = options.report;
+      const bool reused = point_is_complete(run.out_dir, resolved[i]);
+      std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
+                << " = " << value << (reused ? ": already complete in " : " -> ") << run.out_dir
+                << "\n";
+      const int status = reused ? 0 : run_command(run);
+      json point = {{"value", numeric_values[i]},
+                    {"dir", fs::path(run.out_dir).filename().string()},
+                    {"exit_code", status},
+                    {"reused", reused}};
+      // An interrupted run leaves the point's previous outputs in place: they are not its result.
+      const bool stopped = !reused && interruption_signal() && status == interrupted_exit_code();
+      const json summary =
+          stopped ? json(nullptr) : read_json_or_null(fs::path(run.out_dir) / "summary.json");
+      point["status"] = stopped ? json("interrupted") : value_or_null(summary, "status");
+      point["md"] = value_or_null(summary, "md");
+      point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
+                                        ? summary["hydro"]["wall_seconds"]
+                                        : json(nullptr);
+      point["compare"] = value_or_null(summary, "compare");
+      if (status != 0) exit_code = 1;
+      sweep["points"].push_back(point);
+      const json& md = point["md"];
+      if (md.is_object() && md["haff_t0_measured"].is_number()) {
+        std::cerr << "sweep: " << swept.key << " = " << value
+                  << ": Haff t0 = " << md["haff_t0_measured"].get<double>() << " +- "
+                  << value_or_null(md, "haff_t0_measured_error")
+                  << " (kinetic theory with chi: " << md["haff_t0_theory"].get<double>() << ")\n";
+      }
+      sweep["wall_seconds"] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      write_sweep_json(dir, sweep);
+      if (hdf5_broken()) {  // a full disk: the next points cannot be written either
+        sweep["status"] = "failed";
+        write_sweep_json(dir, sweep);
+        std::cerr << "granvv: error: sweep stopped after a failed write; "
+                  << (dir / "sweep.json").string() << " holds the points so far\n";
+        end_process_now(1);
       }
     }
-    point["status"] = value_or_null(summary, "status");
-    point["md"] = value_or_null(summary, "md");
-    point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
-                                      ? summary["hydro"]["wall_seconds"]
-                                      : json(nullptr);
-    point["compare"] = value_or_null(summary, "compare");
-    if (status != 0) exit_code = 1;
-    sweep["points"].push_back(point);
-    const json& md = point["md"];
-    if (md.is_object() && md["haff_t0_measured"].is_number()) {
-      std::cerr << "sweep: " << swept.key << " = " << value
-                << ": Haff t0 = " << md["haff_t0_measured"].get<double>() << " +- "
-                << value_or_null(md, "haff_t0_measured_error")
-                << " (kinetic theory with chi: " << md["haff_t0_theory"].get<double>() << ")\n";
+    if (interruption_signal()) {
+      sweep["status"] = "interrupted";
+      write_sweep_json(dir, sweep);
+      std::cerr << "granvv: sweep interrupted; " << (dir / "sweep.json").string()
+                << " holds the points finished so far, and a re-run of the same sweep keeps them\n";
+      return interrupted_exit_code();
     }
-    sweep["wall_seconds"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 1;
   }
   try {
     sweep["cooling"] = cooling_analysis(sweep["points"], options.power_r_min, 3.0);
@@ -251,7 +325,12 @@ int sweep_command(const SweepOptions& options) {
     sweep["cooling_error"] = e.what();
   }
   sweep["status"] = exit_code == 0 ? "ok" : "failed";
-  write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
+  try {
+    write_sweep_json(dir, sweep);
+  } catch (const std::exception& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 1;
+  }
   if (sweep["cooling"].is_object() && sweep["cooling"]["power_of_one_minus_r2"].is_object()) {
     const auto& p = sweep["cooling"]["power_of_one_minus_r2"];
     std::cerr << "sweep: cooling rate ~ (1 - r^2)^p with p = " << p["power"].get<double>() << " +- "

@@ -178,8 +178,17 @@ TEST(MdCli, SmallHaffSceneThroughTheCli) {
 namespace granvv::md {
 namespace {
 
+// The staging folder a killed run left in dir (docs/outputs.md, "The output protocol").
+std::filesystem::path staging_folder_of(const std::filesystem::path& dir) {
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().filename().string().rfind(".granvv-staging-", 0) == 0) return e.path();
+  }
+  return {};
+}
+
 // The Debian LAMMPS ends the process on an error inside a command. A process that dies in
-// the particle run (here: killed) leaves a summary saying so and the hydro results readable.
+// the particle run (here: killed) has, in its staging folder, a summary saying so and the
+// hydro results readable; the folder itself shows no result of that run.
 TEST(MdCli, ProcessEndingInsideTheParticleRunLeavesReadableOutputs) {
   const auto dir = granvv::testing::fresh_directory("md-killed");
   const std::string command = "timeout -s KILL 4 " + std::string(GRANVV_BINARY) +
@@ -188,14 +197,16 @@ TEST(MdCli, ProcessEndingInsideTheParticleRunLeavesReadableOutputs) {
                               dir.string() + " > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   ASSERT_NE(status, 0);
-  ASSERT_TRUE(std::filesystem::exists(dir / "summary.json"));
-  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "summary.json"));
+  const auto staging = staging_folder_of(dir);
+  ASSERT_FALSE(staging.empty());
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(staging / "summary.json"));
   EXPECT_EQ(s["status"], "failed");
   EXPECT_EQ(s["md"]["status"], "failed");
   EXPECT_NE(s["md"]["error"].get<std::string>().find("log.lammps"), std::string::npos);
   EXPECT_EQ(s["hydro"]["status"], "ok");  // the hydro part had finished and is kept
-  EXPECT_TRUE(std::filesystem::exists(dir / "results.h5"));
-  EXPECT_TRUE(std::filesystem::exists(dir / "log.lammps"));
+  EXPECT_TRUE(std::filesystem::exists(staging / "results.h5"));
+  EXPECT_TRUE(std::filesystem::exists(staging / "log.lammps"));
   std::filesystem::remove_all(dir);
 }
 
@@ -207,13 +218,15 @@ TEST(MdCli, ProcessEndingInsideTheParticleRunOfAComparisonSaysSo) {
                               " run md_haff --quiet --no-report --set md.t_end=1e4 --out " +
                               dir.string() + " > /dev/null 2>&1";
   ASSERT_NE(std::system(command.c_str()), 0);
-  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  const auto staging = staging_folder_of(dir);
+  ASSERT_FALSE(staging.empty());
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(staging / "summary.json"));
   EXPECT_EQ(s["status"], "failed");
   EXPECT_EQ(s["md"]["status"], "failed");
   EXPECT_TRUE(s["compare"].is_null());
-  EXPECT_TRUE(std::filesystem::exists(dir / "case.toml"));
-  EXPECT_TRUE(std::filesystem::exists(dir / "log.lammps"));
-  EXPECT_FALSE(std::filesystem::exists(dir / "results.h5.partial"));
+  EXPECT_TRUE(std::filesystem::exists(staging / "case.toml"));
+  EXPECT_TRUE(std::filesystem::exists(staging / "log.lammps"));
+  EXPECT_FALSE(std::filesystem::exists(staging / "results.h5.partial"));
   std::filesystem::remove_all(dir);
 }
 

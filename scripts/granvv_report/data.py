@@ -97,8 +97,10 @@ def load_results(path):
             return res
     except FileNotFoundError:
         raise ReportError(f"{path} not found")
-    except OSError as e:
-        raise ReportError(f"cannot read {path}: {str(e).splitlines()[0]}")
+    except (OSError, KeyError, RuntimeError, ValueError, TypeError) as e:
+        # h5py reports a damaged file body as any of these, from the first object it cannot read.
+        first = (str(e).splitlines() or [type(e).__name__])[0].strip("'\"")
+        raise ReportError(f"cannot read {path}, the file is damaged: {first}")
 
 
 def load_summary(path, warnings):
@@ -332,6 +334,12 @@ class Run:
         self.warnings = []
         self.summary = load_summary(self.outdir / SUMMARY, self.warnings)
         self.attrs = res["attrs"]
+        # Both files carry the id of the run that wrote them (docs/outputs.md, "The output
+        # protocol"); a page is never built from the results of another run than the summary's.
+        ids = (self.attrs.get("run_id"), self.summary.get("run_id"))
+        if ids != (None, None) and ids[0] != ids[1]:
+            raise ReportError(f"{self.results_path} (run {ids[0]}) and {SUMMARY} (run {ids[1]}) are "
+                              "from different runs; run the case again")
         for key in GROUPS:
             setattr(self, key, res[key])
         self.compare = res["compare"]

@@ -1,0 +1,446 @@
+#!/usr/bin/python3
+"""Fault injection against the real granvv binary: the output protocol of docs/outputs.md.
+
+    /usr/bin/python3 tests/fault_injection.py BUILD/granvv [unittest args, e.g. -k sigterm]
+
+Every test breaks a real run (signals at several phases, a full disk, read-only folders, two
+runs into one folder, MPI failure paths, a damaged results.h5, an interrupted sweep) and then
+asserts the state of the folder: an honest status, readable files, and the previous good result
+either intact or superseded by a complete, honestly labelled one. The full-disk and read-only
+tests mount a small tmpfs and run only as root; otherwise they are skipped. Runs are tiny (a
+64-cell hydro, 400 disks), so the whole file takes well under a minute on an idle core.
+"""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+from pathlib import Path
+
+import h5py
+
+GRANVV = None  # set from argv
+
+# A hydro run of a fraction of a second, and one of many seconds (to be interrupted).
+QUICK = ["single_mode", "--set", "hydro.cells=64", "--set", "convergence.cells=[]",
+         "--set", "hydro.t_end=0.5", "--set", "hydro.output_times=[0.25]", "--quiet", "--no-report"]
+SLOW = ["single_mode", "--set", "hydro.cells=20000", "--set", "convergence.cells=[]",
+        "--set", "hydro.output_times=[0.25]", "--quiet", "--no-report"]
+# 20000 cells for a few steps: the HDF5 write is a large part of its second.
+BIG = ["single_mode", "--set", "hydro.cells=20000", "--set", "convergence.cells=[]",
+       "--set", "hydro.output_times=[]", "--set", "hydro.t_end=0.002", "--quiet", "--no-report"]
+# A particle run of 400 disks: about a second, and one that lasts long enough to be interrupted.
+MD = ["md_haff", "--set", "md.particles=400", "--set", "md.box_width=80", "--set", "md.ensemble=1",
+      "--set", "md.sample_interval=1.0", "--set", "md.snapshot_interval=1.0", "--quiet", "--no-report"]
+MD_QUICK = MD + ["--set", "md.t_end=4", "--set", "md.output_times=[0.0,4.0]"]
+MD_SLOW = MD + ["--set", "md.t_end=4000", "--set", "md.output_times=[0.0,4000.0]"]
+# Long enough for any run of this file on a loaded machine; a hang fails the test instead.
+TIMEOUT = 300
+
+
+def run(args, **kw):
+    return subprocess.run([GRANVV, "run"] + args, capture_output=True, text=True, timeout=TIMEOUT, **kw)
+
+
+def start(args):
+    return subprocess.Popen([GRANVV, "run"] + args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+
+
+def summary(d):
+    with open(Path(d) / "summary.json") as f:
+        return json.load(f)
+
+
+def results_run_id(d):
+    with h5py.File(Path(d) / "results.h5", "r") as f:
+        return f.attrs["run_id"].decode() if isinstance(f.attrs["run_id"], bytes) else f.attrs["run_id"]
+
+
+def wait_for(predicate, seconds=60.0):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if predicate():
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def is_root():
+    return os.geteuid() == 0
+
+
+class Mount:
+    """A small tmpfs (options e.g. "size=400k" or "ro"), unmounted at exit."""
+
+    def __init__(self, where, options):
+        self.where = Path(where)
+        self.where.mkdir(parents=True, exist_ok=True)
+        r = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(self.where)],
+                           capture_output=True, text=True)
+        self.ok = r.returncode == 0
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.ok:
+            subprocess.run(["umount", str(self.where)], check=False)
+
+
+class FolderState(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="granvv-fault-"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def good_run(self, d, args=QUICK):
+        r = run(args + ["--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return summary(d)["run_id"]
+
+    def assert_consistent(self, d, status=None):
+        """summary.json and results.h5 in d belong to one run, and nothing is half-written."""
+        s = summary(d)
+        if status:
+            self.assertEqual(s["status"], status)
+        if (Path(d) / "results.h5").exists():
+            self.assertEqual(results_run_id(d), s["run_id"])
+        leftovers = [p.name for p in Path(d).iterdir() if p.name.endswith(".partial")]
+        self.assertEqual(leftovers, [])
+        return s
+
+    def assert_one_error_line(self, stderr):
+        lines = [l for l in stderr.splitlines() if l.strip()]
+        self.assertEqual(len(lines), 1, stderr)
+        self.assertTrue(lines[0].startswith("granvv: error: "), stderr)
+
+
+class Signals(FolderState):
+    def interrupt(self, args, sig, after):
+        d = self.tmp / "out"
+        previous = self.good_run(d)
+        p = start(args + ["--out", str(d)])
+        time.sleep(after)
+        p.send_signal(sig)
+        _, err = p.communicate(timeout=TIMEOUT)
+        return d, previous, p.returncode, err
+
+    def test_sigint_and_sigterm_during_the_hydro_keep_the_previous_result(self):
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            with self.subTest(sig=sig.name):
+                d, previous, code, err = self.interrupt(SLOW, sig, 1.5)
+                self.assertEqual(code, 128 + sig, err)
+                s = self.assert_consistent(d, "ok")
+                self.assertEqual(s["run_id"], previous)
+                stopped = summary(d / "interrupted-run")
+                self.assertEqual(stopped["status"], "interrupted")
+                self.assertIn(sig.name, stopped["error"])
+                self.assertFalse(any(p.name.startswith(".granvv-staging") for p in d.iterdir()))
+                shutil.rmtree(d)
+
+    def test_sigkill_during_the_hydro_keeps_the_previous_result_and_is_cleaned_up(self):
+        d, previous, code, _ = self.interrupt(SLOW, signal.SIGKILL, 1.5)
+        self.assertEqual(code, -signal.SIGKILL)
+        self.assertEqual(self.assert_consistent(d, "ok")["run_id"], previous)
+        self.assertTrue(any(p.name.startswith(".granvv-staging") for p in d.iterdir()))
+        r = run(QUICK + ["--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("killed before it completed", r.stderr)
+        self.assertFalse(any(p.name.startswith(".granvv-staging") for p in d.iterdir()))
+        self.assert_consistent(d, "ok")
+
+    def test_kills_at_every_phase_never_leave_a_mixed_folder(self):
+        # A run of ~1 s whose last part is the HDF5 write of 20000 cells: kills spread over it
+        # hit the hydro, the write, and the replacement of the outputs.
+        args = BIG
+        d = self.tmp / "out"
+        previous = self.good_run(d)
+        t0 = time.monotonic()
+        self.good_run(self.tmp / "timing", args)
+        duration = time.monotonic() - t0
+        for i, sig in enumerate([signal.SIGKILL, signal.SIGTERM] * 4):
+            after = duration * (0.2 + 0.2 * (i // 2))
+            with self.subTest(sig=sig.name, after=round(after, 3)):
+                p = start(args + ["--out", str(d)])
+                time.sleep(after)
+                p.send_signal(sig)
+                p.communicate(timeout=TIMEOUT)
+                if not (d / "summary.json").exists():
+                    # Killed while it replaced the outputs: its commit marker lets a reader
+                    # finish the replacement.
+                    self.assertTrue(any((q / ".commit").exists() for q in d.iterdir()
+                                        if q.name.startswith(".granvv-staging")))
+                    r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True,
+                                       timeout=TIMEOUT)
+                    self.assertIn("finished replacing the outputs", r.stderr)
+                s = self.assert_consistent(d)
+                # Either the previous result, or a complete new one: never a mixture.
+                if s["run_id"] != previous:
+                    self.assertEqual(s["status"], "ok")
+                    self.assertEqual(s["hydro"]["cells"], 20000)
+                    previous = s["run_id"]
+
+    def test_sigterm_during_a_particle_run_keeps_the_previous_result(self):
+        d = self.tmp / "out"
+        previous = self.good_run(d, MD_QUICK)
+        p = start(MD_SLOW + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: any((q / "particles.h5").exists() for q in d.iterdir()
+                                             if q.name.startswith(".granvv-staging"))))
+        time.sleep(1.0)
+        p.send_signal(signal.SIGTERM)
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + signal.SIGTERM, err)
+        s = self.assert_consistent(d, "ok")
+        self.assertEqual(s["run_id"], previous)
+        stopped = summary(d / "interrupted-run")
+        self.assertEqual(stopped["status"], "interrupted")
+        self.assertEqual(stopped["md"]["error"], "interrupted by SIGTERM")
+        with h5py.File(d / "interrupted-run" / "particles.h5", "r") as f:  # frames so far, readable
+            self.assertGreater(f["particles/all/position/value"].shape[0], 0)
+
+    def test_sigkill_during_a_particle_run_presents_only_the_previous_run(self):
+        d = self.tmp / "out"
+        previous = self.good_run(d, MD_QUICK)
+        p = start(MD_SLOW + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: any((q / "particles.h5").exists() for q in d.iterdir()
+                                             if q.name.startswith(".granvv-staging"))))
+        p.kill()
+        p.communicate(timeout=TIMEOUT)
+        s = self.assert_consistent(d, "ok")
+        self.assertEqual(s["run_id"], previous)
+        r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+
+class Concurrency(FolderState):
+    def test_a_second_run_into_a_busy_folder_refuses_and_mixes_nothing(self):
+        d = self.tmp / "out"
+        p = start(SLOW + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: (d / ".granvv.lock").exists()))
+        time.sleep(0.5)
+        r = run(QUICK + ["--out", str(d)])
+        self.assertEqual(r.returncode, 2)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn(f"pid {p.pid}", r.stderr)
+        p.send_signal(signal.SIGTERM)
+        p.communicate(timeout=TIMEOUT)
+        self.assertFalse((d / "summary.json").exists())  # the first run was interrupted: nothing
+        self.assertEqual(summary(d / "interrupted-run")["status"], "interrupted")
+
+
+class UnusableFolders(FolderState):
+    def test_proc_self_and_a_file_exit_2_with_one_line(self):
+        (self.tmp / "file").write_text("x")
+        for out in ["/proc/self", "/proc/self/x", str(self.tmp / "file")]:
+            with self.subTest(out=out):
+                r = run(QUICK + ["--out", out])
+                self.assertEqual(r.returncode, 2)
+                self.assert_one_error_line(r.stderr)
+
+    @unittest.skipUnless(is_root(), "mounts a read-only tmpfs (root only)")
+    def test_read_only_folder_exits_2_with_one_line(self):
+        with Mount(self.tmp / "ro", "ro,size=64k") as m:
+            self.assertTrue(m.ok)
+            for out in [m.where, m.where / "sub"]:
+                r = run(QUICK + ["--out", str(out)])
+                self.assertEqual(r.returncode, 2)
+                self.assert_one_error_line(r.stderr)
+            self.assertEqual(list(m.where.iterdir()), [])
+
+    @unittest.skipIf(is_root(), "root writes into a chmod 555 folder anyway")
+    def test_read_only_folder_exits_2_with_one_line_unprivileged(self):
+        d = self.tmp / "ro"
+        d.mkdir()
+        d.chmod(0o555)
+        r = run(QUICK + ["--out", str(d)])
+        self.assertEqual(r.returncode, 2)
+        self.assert_one_error_line(r.stderr)
+
+
+@unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
+class FullDisk(FolderState):
+    def test_full_disk_during_results_h5_fails_honestly_over_a_good_run(self):
+        with Mount(self.tmp / "disk", "size=400k") as m:
+            self.assertTrue(m.ok)
+            d = m.where / "out"
+            self.good_run(d)
+            r = run(BIG + ["--out", str(d)])
+            self.assertEqual(r.returncode, 1, r.stderr)
+            s = self.assert_consistent(d, "failed")
+            self.assertIn("No space left on device", s["error"])
+            self.assertFalse((d / "results.h5").exists())  # the half-written file is not kept
+            self.assertEqual((d / "case.toml").read_text().count("cells = 20000"), 1)
+
+    def test_a_disk_full_at_any_point_of_the_write_is_a_failure_not_a_crash(self):
+        # Depending on the room left, HDF5 fails in a dataset write (an exception) or only in
+        # the close of the file, which it reports from a destructor on stderr; either must give
+        # exit 1 and an honest summary, never a crash at exit.
+        for size in ("24k", "40k", "64k", "100k", "200k"):
+            with self.subTest(size=size), Mount(self.tmp / f"disk{size}", f"size={size}") as m:
+                self.assertTrue(m.ok)
+                d = m.where / "out"
+                r = run(QUICK + ["--set", "hydro.cells=4000", "--out", str(d)])
+                self.assertEqual(r.returncode, 1, r.stderr)
+                if not (d / "summary.json").exists():  # not even the summary fits: nothing kept
+                    self.assertIn("keeps what it held before this run", r.stderr)
+                    self.assertEqual([p.name for p in d.iterdir()], [".granvv.lock"])
+                    continue
+                s = self.assert_consistent(d, "failed")
+                self.assertIn("No space left on device", s["error"])
+
+    def test_full_disk_during_particle_frames_never_leaves_an_empty_summary(self):
+        with Mount(self.tmp / "disk", "size=300k") as m:
+            self.assertTrue(m.ok)
+            d = m.where / "out"
+            r = run(MD + ["--set", "md.t_end=200", "--set", "md.output_times=[0.0,200.0]",
+                          "--out", str(d)])
+            self.assertEqual(r.returncode, 1, r.stderr)
+            s = self.assert_consistent(d, "failed")
+            self.assertIn("particle frame", s["error"])
+            self.assertIn("removed to make room", s["error"])
+            self.assertGreater((d / "summary.json").stat().st_size, 0)
+
+
+    def test_a_comparison_failing_after_its_particle_run_keeps_the_particle_results(self):
+        # The particles run first; the hydro's results.h5 then does not fit on the disk.
+        with Mount(self.tmp / "disk", "size=600k") as m:
+            self.assertTrue(m.ok)
+            d = m.where / "out"
+            r = run(MD_QUICK + ["--set", "hydro.cells=5000", "--out", str(d)])
+            self.assertEqual(r.returncode, 1, r.stderr)
+            s = self.assert_consistent(d, "failed")
+            self.assertIn("No space left on device", s["error"])
+            self.assertEqual(s["md"]["status"], "ok")
+            self.assertEqual(s["md"]["particles"], 400)
+            with h5py.File(d / "results.h5", "r") as f:
+                self.assertEqual(f["md/timeseries/T"].shape[0], 1)
+
+
+class Mpi(FolderState):
+    def mpirun(self, args):
+        return subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV, "run"]
+                              + args, capture_output=True, text=True, timeout=120)
+
+    def test_hydro_only_under_mpirun_has_one_writer(self):
+        d = self.tmp / "out"
+        r = self.mpirun(QUICK + ["--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assert_consistent(d, "ok")
+        log = (d / "run.log").read_text()
+        self.assertEqual(log.count("running case"), 1)
+
+    def test_an_out_that_cannot_be_made_ends_every_rank(self):
+        r = self.mpirun(MD_QUICK + ["--out", "/proc/self/x"])  # timeout: a spinning rank fails
+        self.assertNotEqual(r.returncode, 0)
+        self.assertEqual(r.stderr.count("granvv: error: "), 1, r.stderr)
+
+    @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
+    def test_a_write_failure_on_rank_0_ends_every_rank(self):
+        # Without a comparison the hydro runs first and results.h5 is written before the
+        # collective particle run: rank 1 must not enter it alone.
+        with Mount(self.tmp / "disk", "size=40k") as m:
+            self.assertTrue(m.ok)
+            d = m.where / "out"
+            r = self.mpirun(MD_QUICK + ["--set", "compare.enabled=false", "--set", "hydro.cells=4000",
+                                        "--out", str(d)])
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertNotIn("Process received signal", r.stderr)  # no rank crashed at exit
+            self.assertIn("No space left on device", self.assert_consistent(d, "failed")["error"])
+
+
+class Report(FolderState):
+    def test_a_damaged_results_h5_gives_one_line(self):
+        d = self.tmp / "out"
+        self.good_run(d)
+        with open(d / "results.h5", "r+b") as f:
+            size = f.seek(0, 2)
+            f.seek(2048)
+            f.write(b"\0" * (size - 4096))
+        r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 1)
+        self.assertNotIn("Traceback", r.stderr)
+        lines = [l for l in r.stderr.splitlines() if l.strip()]
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn("damaged", lines[0])
+
+    def test_a_replacement_cut_short_is_finished_by_report(self):
+        # The state of a run killed inside its commit: the old summary removed, the new outputs
+        # still in a staging folder with the commit marker (docs/outputs.md).
+        d, new = self.tmp / "out", self.tmp / "new"
+        self.good_run(d)
+        new_id = self.good_run(new, QUICK + ["--set", "hydro.cells=128"])
+        staging = d / ".granvv-staging-99999"
+        shutil.copytree(new, staging, ignore=shutil.ignore_patterns(".granvv.lock"))
+        (staging / ".commit").write_text("".join(p.name + "\n" for p in staging.iterdir()))
+        (d / "summary.json").unlink()
+        r = subprocess.run([GRANVV, "report", str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("finished replacing the outputs", r.stderr)
+        self.assertEqual(self.assert_consistent(d, "ok")["run_id"], new_id)
+        self.assertFalse(staging.exists())
+
+    def test_results_of_another_run_are_refused(self):
+        a, b = self.tmp / "a", self.tmp / "b"
+        self.good_run(a)
+        self.good_run(b)
+        shutil.copy(b / "results.h5", a / "results.h5")
+        r = subprocess.run([GRANVV, "report", str(a)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("from different runs", r.stderr)
+
+
+class Sweeps(FolderState):
+    def sweep(self, d, values, **kw):
+        return subprocess.Popen([GRANVV, "sweep"] + QUICK[:1] + QUICK[1:] +
+                                ["--set", f"hydro.cells={values}", "--out", str(d)],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, **kw)
+
+    def test_equal_values_are_refused(self):
+        r = subprocess.run([GRANVV, "sweep"] + QUICK + ["--set", "hydro.cells=32,64,32", "--out",
+                                                         str(self.tmp / "s")],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 2)
+        self.assert_one_error_line(r.stderr)
+        self.assertFalse((self.tmp / "s").exists())
+
+    def test_an_interrupted_sweep_says_so_and_resumes(self):
+        d = self.tmp / "s"
+        # QUICK's hydro.cells is overridden by the swept one; the last point lasts minutes.
+        p = self.sweep(d, "32,48,20000")
+        point = d / "hydro.cells=20000"
+        self.assertTrue(wait_for(lambda: point.exists()))
+        time.sleep(1.0)
+        p.send_signal(signal.SIGINT)
+        p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + signal.SIGINT)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual(sw["status"], "interrupted")
+        self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok", "interrupted"])
+        ids = [summary(d / f"hydro.cells={v}")["run_id"] for v in (32, 48)]
+        r = self.sweep(d, "32,48,64")
+        r.communicate(timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual(sw["status"], "ok")
+        self.assertEqual([q["reused"] for q in sw["points"]], [True, True, False])
+        self.assertEqual([summary(d / f"hydro.cells={v}")["run_id"] for v in (32, 48)], ids)
+
+    def test_a_killed_sweep_is_not_left_running(self):
+        d = self.tmp / "s"
+        p = self.sweep(d, "32,20000")
+        self.assertTrue(wait_for(lambda: (d / "hydro.cells=20000").exists()))
+        p.kill()
+        p.communicate(timeout=TIMEOUT)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual(sw["status"], "incomplete")
+
+
+if __name__ == "__main__":
+    GRANVV = str(Path(sys.argv.pop(1)).resolve())
+    unittest.main(verbosity=2)
