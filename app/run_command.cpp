@@ -120,7 +120,7 @@ int run_command(const RunOptions& options) {
     md_scene = md_scene_from(*loaded, scene);
     compare_scene = compare_scene_from(*loaded);
   } catch (const ConfigError& e) {
-    std::cerr << "granvv: error: " << e.what() << "\n";
+    report_input_error(e);
     return 2;
   }
   const CaseConfig& config = *loaded;
@@ -174,7 +174,7 @@ int run_command(const RunOptions& options) {
           "particle frames written so far";
       const nlohmann::json status_so_far = summary["status"];
       summary["status"] = "failed";
-      if (writer) write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+      if (writer) write_file_atomically(dir / "summary.json", summary_text(summary));
       summary["status"] = status_so_far;
       log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
       if (md_scene->spec.snapshot_interval > 0.0) {
@@ -238,7 +238,7 @@ int run_command(const RunOptions& options) {
     exit_code = 1;
   }
   if (!writer) return exit_code;
-  write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
+  write_file_atomically(dir / "summary.json", summary_text(summary));
   log->info("wrote {}", (dir / "summary.json").string());
 
   if (options.report && fs::exists(dir / "results.h5")) {

@@ -15,6 +15,7 @@
 #include "app/md_scene.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
+#include "app/summary.hpp"
 #include "compare/cooling_sweep.hpp"
 
 namespace granvv::app {
@@ -174,7 +175,7 @@ int sweep_command(const SweepOptions& options) {
                                    : config.real(swept.key));
     }
   } catch (const ConfigError& e) {
-    std::cerr << "granvv: error: " << e.what() << "\n";
+    report_input_error(e);
     return 2;
   }
   std::string key_name = swept.key;
@@ -243,7 +244,7 @@ int sweep_command(const SweepOptions& options) {
     }
     sweep["wall_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
+    write_file_atomically(dir / "sweep.json", summary_text(sweep));
   }
   try {
     sweep["cooling"] = cooling_analysis(sweep["points"], options.power_r_min, 3.0);
@@ -251,7 +252,7 @@ int sweep_command(const SweepOptions& options) {
     sweep["cooling_error"] = e.what();
   }
   sweep["status"] = exit_code == 0 ? "ok" : "failed";
-  write_file_atomically(dir / "sweep.json", sweep.dump(2) + "\n");
+  write_file_atomically(dir / "sweep.json", summary_text(sweep));
   if (sweep["cooling"].is_object() && sweep["cooling"]["power_of_one_minus_r2"].is_object()) {
     const auto& p = sweep["cooling"]["power_of_one_minus_r2"];
     std::cerr << "sweep: cooling rate ~ (1 - r^2)^p with p = " << p["power"].get<double>() << " +- "
