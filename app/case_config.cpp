@@ -567,7 +567,13 @@ std::string CaseConfig::origin(std::string_view key) const {
 
 int CaseConfig::origin_precedence(std::string_view key) const {
   const std::string o = origin(key);
-  if (o.rfind("--set", 0) == 0) return 2;
+  if (o.rfind("--set", 0) == 0) {  // a later --set ranks above an earlier one
+    int rank = 2;
+    for (std::size_t i = 0; i < sets_.size(); ++i) {
+      if (trim(std::string_view(sets_[i]).substr(0, sets_[i].find('='))) == key) rank = 2 + int(i);
+    }
+    return rank;
+  }
   return o == "default" ? 0 : 1;
 }
 

@@ -60,8 +60,8 @@ class CaseConfig {
 
   // Where a key's value came from: "cases/x.toml:7:5", "--set physics.K=1e-3" or "default".
   std::string origin(std::string_view key) const;
-  // 2 for a --set, 1 for the case file, 0 for a default: of several keys behind one problem,
-  // the message names the one the user touched last.
+  // 2 + its position for a --set, 1 for the case file, 0 for a default: of several keys behind
+  // one problem, the message names the one the user touched last.
   int origin_precedence(std::string_view key) const;
 
   // The whole resolved case (every key of the schema, defaults filled, overrides applied) as TOML

@@ -147,13 +147,8 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   check_mode_counts(c, s.physics);
   check_resolved_modes(c, s.cells);
   check_convergence_study(c, s);
-  // In a comparison the hydro runs to md.t_end instead (md_scene_from estimates that run).
-  const bool own_end_time = !c.boolean("compare.enabled");
-  if (own_end_time) {  // at least t_end / dt_max steps, before anything is allocated
-    refuse_beyond(c, {"hydro.t_end", "hydro.dt_max", "hydro.cells"},
-                  double(s.cells) * std::ceil(ctl.t_end / ctl.time_step.dt_max), kMaxCellSteps,
-                  "cell-steps", "the hydro run (hydro.t_end / hydro.dt_max steps)");
-  }
+  // In a comparison the hydro runs to md.t_end instead (md_scene_from checks that run).
+  if (!c.boolean("compare.enabled")) check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
   const auto fields = hydro::make_initial_fields(ini, s.physics);
   const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
   for (int i = 0; i < s.cells; ++i) {
@@ -163,18 +158,28 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
                         std::to_string(i) + "; lower the perturbation amplitudes");
     }
   }
-  if (own_end_time) {  // the first step's size, kept to t_end: an estimate of the whole run
-    const auto closure = hydro::make_closure("dilute", {s.physics, {}});
-    const hydro::TimeStepLimit first = hydro::TimeStepLimiter(*closure, ctl.time_step).limit(state);
-    const std::string limiting = first.limited_by == "compression" ? "hydro.max_compression"
-                                 : first.limited_by == "sound"     ? "hydro.cfl"
-                                                                   : "hydro.dt_max";
-    refuse_beyond(
-        c, {"hydro.t_end", limiting, "hydro.cells", "physics.K"},
-        double(s.cells) * ctl.t_end / first.dt, kMaxCellSteps, "cell-steps",
-        "the hydro run (first step " + format_real(first.dt) + ", limited by " + limiting + ")");
-  }
   return s;
+}
+
+void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
+                      const std::string& end_key) {
+  const auto& step = s.control.time_step;
+  // At least t_end / dt_max steps, before anything is allocated.
+  refuse_beyond(c, {end_key, "hydro.dt_max", "hydro.cells"},
+                double(s.cells) * std::ceil(t_end / step.dt_max), kMaxCellSteps, "cell-steps",
+                "the hydro run (" + end_key + " / hydro.dt_max steps)");
+  // The first step's size, kept to t_end: an estimate of the whole run.
+  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, s.physics), s.cells,
+                                       s.node_offset, false);
+  const auto closure = hydro::make_closure("dilute", {s.physics, {}});
+  const hydro::TimeStepLimit first = hydro::TimeStepLimiter(*closure, step).limit(state);
+  const std::string limiting = first.limited_by == "compression" ? "hydro.max_compression"
+                               : first.limited_by == "sound"     ? "hydro.cfl"
+                                                                 : "hydro.dt_max";
+  refuse_beyond(
+      c, {end_key, limiting, "hydro.cells", "physics.K"}, double(s.cells) * t_end / first.dt,
+      kMaxCellSteps, "cell-steps",
+      "the hydro run (first step " + format_real(first.dt) + ", limited by " + limiting + ")");
 }
 
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {

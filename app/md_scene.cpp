@@ -185,6 +185,9 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       "cluster, or a larger K / smaller md.box_width)");
   }
   check_particle_work(c, s, t_haff);
+  if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units
+    check_hydro_work(c, hydro, spec.t_end / spec.scene.box_length, "md.t_end");
+  }
   try {
     (void)make_engine(s, "");
   } catch (const std::invalid_argument& e) {
