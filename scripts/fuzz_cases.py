@@ -207,9 +207,8 @@ def check_one(index, args, item, env):
         out = work / "out"
         cmd = [args.granvv, "run", case]
         if real:
-            shrink = SHRINK_HYDRO + SHRINK_SCENE.get(scene, [])
-            if "md" in scene or scene == "quickstart":
-                shrink = shrink + SHRINK_MD
+            # The particle keys too: a mutation may switch the particles on in any scene.
+            shrink = SHRINK_HYDRO + SHRINK_SCENE.get(scene, []) + SHRINK_MD
             for s in shrink:  # the mutations come last and win
                 cmd += ["--set", s]
         for s in sets:

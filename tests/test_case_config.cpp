@@ -494,3 +494,75 @@ TEST(CaseConfigSchema, ConstraintTexts) {
 
 }  // namespace
 }  // namespace granvv::app
+
+// ---------------------------------------------------------------------------------------------
+// Issue 9: integers, text and the key a message names
+// ---------------------------------------------------------------------------------------------
+namespace granvv::app {
+namespace {
+
+TEST(CaseSchemaIntegers, EveryIntegerKeyIsBoundedWithinAnInt) {
+  for (const KeySpec& spec : case_schema()) {
+    if (spec.type != ValueType::integer && spec.type != ValueType::integer_array) continue;
+    ASSERT_TRUE(spec.constraint.max.has_value()) << spec.key;
+    EXPECT_LE(*spec.constraint.max, 2147483647.0) << spec.key;
+    EXPECT_TRUE(spec.constraint.min.has_value()) << spec.key;
+  }
+}
+
+TEST(CaseSchemaIntegers, BeyondAnIntIsRefusedWithTheKeyAndRange) {
+  // 2^32 + 4 truncates to 4 as an int: it must be refused, naming the key that was wrong.
+  EXPECT_EQ(error_of(kMinimalCase, {"hydro.cells=4294967300"}),
+            "--set hydro.cells=4294967300: hydro.cells = 4294967300: must be in [4, 1e7] "
+            "(number of Lagrangian cells)");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"initial.mode=4294967297"}),
+                  "initial.mode = 4294967297: must be in [1, 2147483647]");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"md.ensemble=4294967296"}),
+                  "md.ensemble = 4294967296: must be in [1, 1000]");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"hydro.series_every=4294967296"}),
+                  "hydro.series_every = 4294967296: must be in [1, 2147483647]");
+  // Beyond int64 TOML has no integer: the value is a bare string, not an integer.
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"hydro.cells=99999999999999999999"}),
+                  "expected an integer in [4, 1e7]");
+}
+
+TEST(CaseSchemaIntegers, IntValueReadsTheCheckedValue) {
+  const CaseConfig c = load(kMinimalCase, {"hydro.cells=12", "convergence.cells=[5, 15, 45]"});
+  EXPECT_EQ(c.int_value("hydro.cells"), 12);
+  EXPECT_EQ(c.int_values("convergence.cells"), (std::vector<int>{5, 15, 45}));
+  EXPECT_THROW((void)c.int_value("physics.K"), std::logic_error);
+}
+
+TEST(CaseText, NonUtf8AndOverlongStrings) {
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"case.description=a\xff"}),
+                  "case.description = \"a\xff\": must be valid UTF-8 text");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"case.name=\xc0\xaf"}), "must be valid UTF-8 text");
+  // A 300 kB name is refused (a folder name has at most 255 bytes) and not echoed whole.
+  const std::string name(300000, 'a');
+  const std::string m = error_of(std::string(kMinimalCase) + "[case]\nname = \"" + name + "\"\n");
+  EXPECT_LT(m.size(), 600u);
+  EXPECT_CONTAINS(m, "... (300000 bytes)");
+  EXPECT_CONTAINS(m, "at most 255 bytes");
+  EXPECT_TRUE(valid_utf8("é€𝄞"));
+  EXPECT_FALSE(valid_utf8("\xed\xa0\x80"));      // a surrogate
+  EXPECT_FALSE(valid_utf8("\xf4\x90\x80\x80"));  // above U+10FFFF
+  EXPECT_FALSE(valid_utf8("\xe0\x80\xaf"));      // overlong
+  EXPECT_EQ(utf8_repaired("a\xff\xc3\xa9", '_'), "a_\xc3\xa9");
+}
+
+TEST(CaseText, DefaultNameFromAFileNameIsAFolderName) {
+  const CaseConfig c = CaseConfig::from_string(kMinimalCase, "cases/x\xff\x01y.toml");
+  EXPECT_EQ(c.name(), "x__y");
+  // The resolved case names its source with the bad bytes replaced, and parses again.
+  const CaseConfig again = CaseConfig::from_string(c.resolved_toml(), "again.toml");
+  EXPECT_EQ(again.flattened(), c.flattened());
+}
+
+TEST(CaseOrigins, TheLaterSetIsBlamed) {
+  const CaseConfig c = load(kMinimalCase, {"hydro.t_end=2", "hydro.dt_max=1e-3"});
+  EXPECT_GT(c.origin_precedence("hydro.dt_max"), c.origin_precedence("hydro.t_end"));
+  EXPECT_GT(c.origin_precedence("hydro.t_end"), c.origin_precedence("hydro.cells"));
+}
+
+}  // namespace
+}  // namespace granvv::app
