@@ -11,7 +11,8 @@ short time), so that every input ends within the time bound unless it hangs.
 
 Asserted for every input, with the real CLI:
   - no death by a signal, and no exit code outside 0, 1, 2;
-  - no hang: each run ends within --timeout seconds;
+  - no hang: each run ends within --timeout seconds, or is still advancing then (its progress
+    lines, one a second, show t moving: a valid long run, counted as "slow");
   - exit 2: exactly one line on stderr, "granvv: error: ...", and no output folder created;
   - exit 0 of a dry run: the resolved case it prints runs again (--dry-run of it exits 0 and
     resolves to the same keys and values);
@@ -26,6 +27,7 @@ Prints the counts; exits 1 if any input broke an assertion (each is printed with
 """
 import argparse
 import concurrent.futures
+import datetime
 import json
 import math
 import os
@@ -35,6 +37,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import tomllib
 from pathlib import Path
 
@@ -42,7 +45,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # Scenes cheap enough to run for real after shrinking (hydro: a few dozen cells; particles: a
 # few hundred disks for a short time).
-SHRINK_HYDRO = ["hydro.cells=32", "hydro.progress_seconds=100"]
+SHRINK_HYDRO = ["hydro.cells=32", "hydro.progress_seconds=1"]
 SHRINK_MD = ["md.particles=200", "md.ensemble=1", "md.box_width=20.0", "md.bins=4",
              "md.t_end=2.0", "md.output_times=[0.0, 2.0]", "md.sample_interval=0.5",
              "md.snapshot_interval=0.0", "md.time_unit='md'", "compare.density_modes=1"]
@@ -170,6 +173,26 @@ def run(cmd, timeout, cwd, env):
         return None, e.stdout or b"", e.stderr or b"", True
 
 
+def still_advancing(run_log, killed_at):
+    """True if run.log shows a run that was still making progress when it was stopped: its
+    last two progress lines (one a second, hydro.progress_seconds = 1) have different times t
+    and the last one is recent. A valid but long run is "slow", not a hang."""
+    try:
+        lines = [l for l in run_log.read_text(errors="replace").splitlines() if " t=" in l]
+    except OSError:
+        return False
+    if len(lines) < 2:
+        return False
+    def parse(line):
+        stamp = datetime.datetime.strptime(line[1:24], "%Y-%m-%d %H:%M:%S.%f").timestamp()
+        return stamp, line.split(" t=")[1].split()[0]
+    try:
+        (t1, v1), (t2, v2) = parse(lines[-2]), parse(lines[-1])
+    except (ValueError, IndexError):
+        return False
+    return v1 != v2 and killed_at - t2 < 10.0
+
+
 def strict_json(text):
     def no_constant(name):
         raise ValueError("summary.json holds " + name)
@@ -221,6 +244,8 @@ def check_one(index, args, item, env):
         code, stdout, stderr, hung = run(cmd, args.timeout, work, env)
         kind = ("run" if real else "dry") + ":"
         if hung:
+            if real and still_advancing(out / "run.log", time.time()):
+                return kind + "slow", None, text
             return kind + "hang", "no answer within %g s" % args.timeout, text
         if code < 0:
             return kind + "signal", "killed by signal %d: %s" % (-code, stderr[-300:]), text
