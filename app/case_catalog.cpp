@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "app/case_config.hpp"
 #include "app/data_directory.hpp"
@@ -22,13 +23,17 @@ fs::path cases_directory() {
 CaseSource locate_case(const std::string& name) {
   if (name.empty()) return {kQuickstartToml, "embedded:cases/quickstart.toml"};
   fs::path path = name;
-  if (!fs::is_regular_file(path)) {
+  std::error_code ec;  // a name too long or unreadable is "not found", not an exception
+  if (fs::is_directory(path, ec)) {
+    throw ConfigError("case file '" + abbreviated(name) + "' is a directory, not a TOML file");
+  }
+  if (!fs::is_regular_file(path, ec)) {
     const fs::path in_catalog =
         cases_directory() / (path.extension() == ".toml" ? name : name + ".toml");
-    if (fs::is_regular_file(in_catalog)) {
+    if (fs::is_regular_file(in_catalog, ec)) {
       path = in_catalog;
     } else {
-      throw ConfigError("case '" + name +
+      throw ConfigError("case '" + abbreviated(name) +
                         "' not found: no such file, and no scene of that name in " +
                         cases_directory().string() + " (`granvv list` shows the scenes)");
     }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <system_error>
@@ -50,8 +53,9 @@ std::string position(const std::string& source, const toml::source_region& regio
          std::to_string(region.begin.column);
 }
 
-// A --set argument as the user would retype it in a shell.
-std::string shell_word(std::string_view arg) {
+// A --set argument as the user would retype it in a shell (abbreviated if long).
+std::string shell_word(std::string_view whole) {
+  const std::string arg = abbreviated(whole);
   const bool plain = !arg.empty() && std::all_of(arg.begin(), arg.end(), [](char ch) {
     return std::isalnum(static_cast<unsigned char>(ch)) ||
            std::string_view("_-.=+,:/@%").find(ch) != std::string_view::npos;
@@ -78,7 +82,7 @@ std::string format_node(const toml::node& node) {
     case toml::node_type::boolean:
       return node.as_boolean()->get() ? "true" : "false";
     case toml::node_type::string:
-      return toml_quoted(node.as_string()->get());
+      return toml_quoted(abbreviated(node.as_string()->get()));
     case toml::node_type::array: {
       std::vector<std::string> items;
       for (const toml::node& elem : *node.as_array()) items.push_back(format_node(elem));
@@ -132,7 +136,7 @@ std::string unknown_key_message(const std::string& key) {
     }
     candidates.push_back(k);
   }
-  std::string message = "unknown key '" + key + "'";
+  std::string message = "unknown key '" + abbreviated(key) + "'";
   if (const auto guess = closest_match(key, candidates))
     message += " (did you mean '" + *guess + "'?)";
   message += table.empty() ? "; allowed at top level: " : "; allowed in [" + table + "]: ";
@@ -188,8 +192,14 @@ std::optional<Value> extract(const KeySpec& spec, const toml::node& node) {
 Value default_value(const KeySpec& spec, const std::string& source) {
   switch (spec.default_value.kind) {
     case Default::Kind::file_stem: {
-      std::string stem = std::filesystem::path(source).stem().string();
-      return Value(stem.empty() ? std::string("case") : stem);
+      // A folder name: bytes that are not UTF-8 text or are control characters become '_'.
+      std::string stem = utf8_repaired(std::filesystem::path(source).stem().string(), '_');
+      for (char& ch : stem) {
+        const auto u = static_cast<unsigned char>(ch);
+        if (u < 0x20 || u == 0x7f || ch == '\\') ch = '_';
+      }
+      if (stem.size() > kMaxNameBytes) stem = utf8_repaired(stem.substr(0, kMaxNameBytes), '_');
+      return Value(stem.empty() || stem == "." || stem == ".." ? std::string("case") : stem);
     }
     case Default::Kind::empty_array:
       if (spec.type == ValueType::integer_array) return Value(std::vector<long long>{});
@@ -273,7 +283,8 @@ Override parse_override(const std::string& arg) {
       eq == std::string::npos ? std::string_view() : trim(std::string_view(arg).substr(0, eq));
   if (eq == std::string::npos || !valid_dotted_key(key)) {
     std::string quoted = "'";
-    for (const char ch : arg) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    for (const char ch : abbreviated(arg))
+      quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
     fail("--set " + quoted + "': malformed override; expected KEY=VALUE with a dotted KEY, e.g. " +
          "--set physics.K=1e-3");
   }
@@ -363,6 +374,14 @@ void walk(const toml::table& table, const std::string& path, const std::string& 
 
 }  // namespace
 
+void report_input_error(const ConfigError& error) {
+  for (const char* variable : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}) {
+    const char* rank = std::getenv(variable);
+    if (rank && std::string_view(rank) != "0") return;
+  }
+  std::cerr << "granvv: error: " << error.what() << "\n";
+}
+
 // ---------------------------------------------------------------------------------------------
 // CaseConfig
 // ---------------------------------------------------------------------------------------------
@@ -435,7 +454,8 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
       continue;
     }
     const std::optional<Value> value = extract(spec, *node);
-    const std::string prefix = where + ": " + spec.key + " = " + format_node(*node) + ": ";
+    const std::string prefix =
+        where + ": " + spec.key + " = " + abbreviated(format_node(*node), 200) + ": ";
     if (!value) {
       problems.add(group, region, prefix + "expected " + expected_phrase(spec));
       continue;
@@ -453,7 +473,8 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
     if (const auto violation = check.check(config)) {
       const std::string origin = config.origin(violation->key);
       fail((origin == "default" ? source : origin) + ": " + violation->key + " = " +
-           format_value(config.value(violation->key)) + ": " + violation->message);
+           abbreviated(format_value(config.value(violation->key)), 200) + ": " +
+           violation->message);
     }
   }
 
@@ -490,6 +511,37 @@ double CaseConfig::real(std::string_view key) const {
 long long CaseConfig::integer(std::string_view key) const {
   return std::get<long long>(checked(key, ValueType::integer));
 }
+
+namespace {
+
+// The value of an integer key as an int. The schema bounds every integer key within an int
+// (case_schema.cpp), so a value outside is a key that escaped validation: refused, named.
+int as_int(const KeySpec& spec, const std::string& origin, long long value) {
+  const Constraint& c = spec.constraint;
+  const bool fits = value >= std::numeric_limits<int>::min() &&
+                    value <= std::numeric_limits<int>::max() &&
+                    (!c.min || static_cast<double>(value) >= *c.min) &&
+                    (!c.max || static_cast<double>(value) <= *c.max);
+  if (!fits) {
+    fail(origin + ": " + spec.key + " = " + std::to_string(value) + ": must be " +
+         expected_phrase(spec));
+  }
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+int CaseConfig::int_value(std::string_view key) const {
+  const long long v = integer(key);
+  return as_int(*find_key_spec(key), origin(key), v);
+}
+
+std::vector<int> CaseConfig::int_values(std::string_view key) const {
+  std::vector<int> out;
+  for (const long long v : integers(key))
+    out.push_back(as_int(*find_key_spec(key), origin(key), v));
+  return out;
+}
 bool CaseConfig::boolean(std::string_view key) const {
   return std::get<bool>(checked(key, ValueType::boolean));
 }
@@ -513,6 +565,18 @@ std::string CaseConfig::origin(std::string_view key) const {
   return it == origins_.end() ? std::string("default") : it->second;
 }
 
+int CaseConfig::origin_precedence(std::string_view key) const {
+  const std::string o = origin(key);
+  if (o.rfind("--set", 0) == 0) {  // a later --set ranks above an earlier one
+    int rank = 2;
+    for (std::size_t i = 0; i < sets_.size(); ++i) {
+      if (trim(std::string_view(sets_[i]).substr(0, sets_[i].find('='))) == key) rank = 2 + int(i);
+    }
+    return rank;
+  }
+  return o == "default" ? 0 : 1;
+}
+
 std::vector<std::pair<std::string, std::string>> CaseConfig::flattened() const {
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& [key, v] : values_) out.emplace_back(key, format_value(v));
@@ -522,7 +586,7 @@ std::vector<std::pair<std::string, std::string>> CaseConfig::flattened() const {
 std::string CaseConfig::resolved_toml() const {
   // TOML comments may not hold control characters.
   const auto comment = [](std::string_view s) {
-    std::string out(s);
+    std::string out = utf8_repaired(s, '?');
     for (char& ch : out) {
       const auto u = static_cast<unsigned char>(ch);
       if ((u < 0x20 && ch != '\t') || u == 0x7f) ch = '?';

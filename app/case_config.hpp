@@ -26,6 +26,11 @@ struct ConfigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Prints "granvv: error: <message>" on stderr once per job: under mpirun only the first rank
+// prints. The rank is read from the launcher's environment (Open MPI, MPICH, PMIx), because
+// input is validated before MPI starts.
+void report_input_error(const ConfigError& error);
+
 class CaseConfig {
  public:
   // Reads and validates `file`; `sets` are the arguments of --set ("physics.K=1e-3"). A file that
@@ -38,6 +43,11 @@ class CaseConfig {
 
   double real(std::string_view key) const;  // "physics.K"; an integer in the file reads as real
   long long integer(std::string_view key) const;
+  // An integer key as an int, for every count, mode number or size the engines take as int.
+  // The schema bounds each integer key within an int; a value outside its range is a
+  // ConfigError naming the key, its value and the allowed range.
+  int int_value(std::string_view key) const;
+  std::vector<int> int_values(std::string_view key) const;
   bool boolean(std::string_view key) const;
   std::string string(std::string_view key) const;
   std::vector<double> reals(std::string_view key) const;
@@ -50,6 +60,9 @@ class CaseConfig {
 
   // Where a key's value came from: "cases/x.toml:7:5", "--set physics.K=1e-3" or "default".
   std::string origin(std::string_view key) const;
+  // 2 + its position for a --set, 1 for the case file, 0 for a default: of several keys behind
+  // one problem, the message names the one the user touched last.
+  int origin_precedence(std::string_view key) const;
 
   // The whole resolved case (every key of the schema, defaults filled, overrides applied) as TOML
   // text, with each key's description and allowed values as a comment. Parsing it back with

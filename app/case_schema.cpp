@@ -27,6 +27,11 @@ const Default kRequired = Default::required();
 const Default kFileStem = Default::file_stem();
 const Default kEmpty = Default::empty_array();
 
+// Integer keys are read as C++ int (CaseConfig::int_value): none may exceed this.
+constexpr double kIntMax = 2147483647.0;
+// A mesh this fine holds about 1 GB of state and snapshots; finer ones do not fit this machine.
+constexpr double kMaxCells = 1e7;
+
 Constraint constraint_of(const hydro::ParameterRange& range) {
   Constraint c;
   c.min = range.min;
@@ -75,8 +80,9 @@ std::vector<KeySpec> rows_without_initial() {
        "paper, figure or equation the scene reproduces"},
 
       // [physics]
-      {"physics.K", kReal, kRequired, positive(),
-       "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0)"},
+      {"physics.K", kReal, kRequired, open_closed(0, 100),
+       "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0); the hydrodynamics needs K << 1, and "
+       "beyond 100 the transport coefficients (K^2) overflow the step control"},
       {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
 
       // [initial]: initial.type and the parameters its generators declare (hydro/initial_*.cpp),
@@ -85,17 +91,19 @@ std::vector<KeySpec> rows_without_initial() {
       // [hydro]
       {"hydro.enabled", kBoolean, true, any_value(),
        "run the hydro for this case (false: a particle-only scene)"},
-      {"hydro.cells", kInteger, 2000, at_least(4), "number of Lagrangian cells"},
+      {"hydro.cells", kInteger, 2000, closed_closed(4, kMaxCells), "number of Lagrangian cells"},
       {"hydro.t_end", kReal, 4.0, positive(),
        "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
       {"hydro.output_times", kReals, kEmpty, increasing(non_negative()),
        "times at which fields are written"},
       {"hydro.cfl", kReal, 2.0, open_closed(0, 20),
        "acoustic Courant number (pressure is implicit in its adiabatic part, so > 1 is stable)"},
-      {"hydro.max_compression", kReal, 0.1, open_closed(0, 0.5),
-       "largest relative change of a cell width per step"},
-      {"hydro.max_temperature_change", kReal, 0.2, open_open(0, 1),
-       "largest relative change of a cell temperature per step"},
+      {"hydro.max_compression", kReal, 0.1, closed_closed(1e-6, 0.5),
+       "largest relative change of a cell width per step (below 1e-6 the round-off in a "
+       "flow at rest stalls the step)"},
+      {"hydro.max_temperature_change", kReal, 0.2, closed_open(1e-6, 1),
+       "largest relative change of a cell temperature per step (below 1e-6 the round-off in "
+       "a gas at rest stalls the step)"},
       {"hydro.dt_max", kReal, 0.05, positive(), "largest time step"},
       {"hydro.stop_density", kReal, 1e6, greater_than(1),
        "stop (singularity) when the peak density exceeds this"},
@@ -107,7 +115,8 @@ std::vector<KeySpec> rows_without_initial() {
        "position of the first node in units of the cell width"},
       {"hydro.progress_seconds", kReal, 2.0, positive(),
        "wall-clock seconds between progress lines"},
-      {"hydro.series_every", kInteger, 1, at_least(1), "write the time series every N steps"},
+      {"hydro.series_every", kInteger, 1, closed_closed(1, kIntMax),
+       "write the time series every N steps"},
 
       // [analysis]
       {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),
@@ -122,7 +131,7 @@ std::vector<KeySpec> rows_without_initial() {
        "relative tolerance of the self-similar profile collapse"},
 
       // [convergence]
-      {"convergence.cells", kIntegers, kEmpty, increasing(at_least(4)),
+      {"convergence.cells", kIntegers, kEmpty, increasing(closed_closed(4, kMaxCells)),
        "cell counts of the convergence study (empty = no study)"},
       {"convergence.t", kReal, 1.0, positive(), "time at which the convergence study compares"},
       {"convergence.cfl", kReal, 0.5, open_closed(0, 20),
@@ -134,26 +143,27 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
       {"md.engine", kString, "lammps", one_of(md::particle_engine_names()),
        "particle engine (md_bridge/particle_engine_registry.cpp)"},
-      {"md.particles", kInteger, 0, at_least(0),
+      {"md.particles", kInteger, 0, closed_closed(0, 2e6),
        "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
       {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
       {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
       {"md.restitution", kReal, 0.0, closed_closed(0, 1),
        "coefficient of normal restitution r; 0 = 1 - 2 physics.q"},
-      {"md.seed", kInteger, 1, at_least(0),
+      {"md.seed", kInteger, 1, closed_closed(0, kIntMax),
        "seed of the particle sample (ensemble member m: seed + m)"},
-      {"md.ensemble", kInteger, 1, at_least(1), "number of independent seeds"},
+      {"md.ensemble", kInteger, 1, closed_closed(1, 1000), "number of independent seeds"},
       {"md.t_end", kReal, 100.0, positive(), "end time in MD units"},
       {"md.output_times", kReals, kEmpty, increasing(non_negative()),
        "snapshot times of the coarse-grained fields, MD units"},
       {"md.sample_interval", kReal, 1.0, positive(), "time between time-series samples, MD units"},
-      {"md.bins", kInteger, 100, at_least(1), "coarse-graining bins along x"},
+      {"md.bins", kInteger, 100, closed_closed(1, 1e6), "coarse-graining bins along x"},
       {"md.kernel", kString, "bin", one_of({"bin", "gaussian", "lucy"}), "coarse-graining kernel"},
       {"md.kernel_width", kReal, 0.0, non_negative(),
        "kernel width in sigma (gaussian, lucy); 0 for bins"},
       {"md.max_overlap", kReal, 0.01, open_closed(0, 0.1),
        "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
-      {"md.steps_per_contact", kInteger, 30, at_least(10), "time steps per contact duration"},
+      {"md.steps_per_contact", kInteger, 30, closed_closed(10, 1e4),
+       "time steps per contact duration"},
       {"md.adaptive_stiffness", kBoolean, true, any_value(),
        "lower kn and raise dt as the gas cools, restitution fixed"},
       {"md.snapshot_interval", kReal, 0.0, non_negative(),
@@ -173,15 +183,34 @@ std::vector<KeySpec> rows_without_initial() {
        "a bin agrees when |hydro - MD| < sigmas standard errors of the MD mean"},
       {"compare.agreement_fraction", kReal, 0.95, open_closed(0, 1),
        "a field agrees at a time when at least this fraction of its bins agree"},
-      {"compare.density_modes", kInteger, 0, at_least(0),
+      {"compare.density_modes", kInteger, 0, closed_closed(0, 1e4),
        "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
   };
 }
 
 }  // namespace
 
+namespace {
+
+// Every integer key is read as an int: one without a declared upper bound gets INT_MAX, and
+// a declared one above it is a mistake in the schema.
+std::vector<KeySpec> with_integer_bounds(std::vector<KeySpec> rows) {
+  for (KeySpec& row : rows) {
+    if (row.type != ValueType::integer && row.type != ValueType::integer_array) continue;
+    Constraint& c = row.constraint;
+    if (!c.max) c.max = kIntMax, c.max_exclusive = false;
+    if (*c.max > kIntMax || (c.min && *c.min < -kIntMax)) {
+      throw std::logic_error("case schema: the range of " + row.key + " exceeds an int");
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
 const std::vector<KeySpec>& case_schema() {
-  static const std::vector<KeySpec> rows = with_initial_condition_rows(rows_without_initial());
+  static const std::vector<KeySpec> rows =
+      with_integer_bounds(with_initial_condition_rows(rows_without_initial()));
   return rows;
 }
 
@@ -190,11 +219,9 @@ const std::vector<KeySpec>& case_schema() {
 // ---------------------------------------------------------------------------------------------
 namespace {
 
-// 2 = --set, 1 = case file, 0 = default: blame the key the user touched last.
+// Blame the key the user touched last.
 int origin_rank(const CaseConfig& c, const std::string& key) {
-  const std::string o = c.origin(key);
-  if (o.rfind("--set", 0) == 0) return 2;
-  return o == "default" ? 0 : 1;
+  return c.origin_precedence(key);
 }
 
 std::string from(const CaseConfig& c, const std::string& key) {
@@ -439,6 +466,12 @@ namespace {
 
 // Bounds print as plain numbers: 0, 0.5, 1e+06 -> 1e6.
 std::string bound(double x) {
+  if (x == std::floor(x) && std::abs(x) < 1e15 && std::abs(x) >= 1e6) {
+    const std::string digits = std::to_string(static_cast<long long>(x));
+    const std::string shortest = format_real(x);  // 1e7 rather than 10000000
+    return shortest.size() < digits.size() && shortest.find('.') == std::string::npos ? shortest
+                                                                                      : digits;
+  }
   std::string s = format_real(x);
   if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
   return s;
@@ -453,7 +486,10 @@ std::string scalar_text(const Constraint& c) {
   if (c.min) return (c.min_exclusive ? "> " : ">= ") + bound(*c.min);
   if (c.max) return (c.max_exclusive ? "< " : "<= ") + bound(*c.max);
   if (!c.choices.empty()) return "one of " + join(c.choices, ", ");
-  if (c.name) return "non-empty, without '/', '\\' or control characters";
+  if (c.name) {
+    return "non-empty, at most " + std::to_string(kMaxNameBytes) +
+           " bytes, without '/', '\\' or control characters";
+  }
   return "";
 }
 
@@ -598,6 +634,7 @@ std::optional<std::string> constraint_violation(const KeySpec& spec, const Value
       return std::nullopt;
     case ValueType::string: {
       const std::string& s = std::get<std::string>(value);
+      if (!valid_utf8(s)) return with_description("must be valid UTF-8 text", spec);
       if (!c.choices.empty() &&
           std::find(c.choices.begin(), c.choices.end(), s) == c.choices.end()) {
         std::string why = with_description("must be " + c.text(), spec);
@@ -610,7 +647,7 @@ std::optional<std::string> constraint_violation(const KeySpec& spec, const Value
           const auto u = static_cast<unsigned char>(ch);
           return ch == '/' || ch == '\\' || u < 0x20 || u == 0x7f;
         });
-        if (s.empty() || s == "." || s == ".." || bad_char) {
+        if (s.empty() || s == "." || s == ".." || bad_char || s.size() > kMaxNameBytes) {
           return with_description("must be " + c.text(), spec);
         }
       }
@@ -680,6 +717,70 @@ std::string toml_quoted(std::string_view s) {
     }
   }
   return out + "\"";
+}
+
+namespace {
+
+// Length of the well-formed UTF-8 sequence starting at s[i], or 0 if there is none.
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t j) { return static_cast<unsigned char>(s[j]); };
+  const unsigned char b0 = byte(i);
+  if (b0 < 0x80) return 1;
+  std::size_t length = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+  if (b0 >= 0xC2 && b0 <= 0xDF) {
+    length = 2;
+  } else if (b0 >= 0xE0 && b0 <= 0xEF) {
+    length = 3;
+    if (b0 == 0xE0) lo = 0xA0;  // no overlong forms
+    if (b0 == 0xED) hi = 0x9F;  // no surrogates
+  } else if (b0 >= 0xF0 && b0 <= 0xF4) {
+    length = 4;
+    if (b0 == 0xF0) lo = 0x90;
+    if (b0 == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
+  } else {
+    return 0;
+  }
+  if (i + length > s.size()) return 0;
+  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t j = 2; j < length; ++j) {
+    if (byte(i + j) < 0x80 || byte(i + j) > 0xBF) return 0;
+  }
+  return length;
+}
+
+}  // namespace
+
+bool valid_utf8(std::string_view s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t n = utf8_sequence_length(s, i);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
+}
+
+std::string utf8_repaired(std::string_view s, char replacement) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t n = utf8_sequence_length(s, i);
+    if (n == 0) {
+      out += replacement;
+      ++i;
+    } else {
+      out.append(s.substr(i, n));
+      i += n;
+    }
+  }
+  return out;
+}
+
+std::string abbreviated(std::string_view s, std::size_t limit) {
+  if (s.size() <= limit) return std::string(s);
+  std::size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+  return std::string(s.substr(0, cut)) + "... (" + std::to_string(s.size()) + " bytes)";
 }
 
 std::string format_value(const Value& value) {

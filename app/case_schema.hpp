@@ -51,13 +51,17 @@ struct Default {
   explicit Default(Kind k) : kind(k) {}
 };
 
+// The longest case.name: a folder name (NAME_MAX on Linux).
+constexpr std::size_t kMaxNameBytes = 255;
+
 // What values of a key (or, for arrays, of each element) are allowed.
 struct Constraint {
   std::optional<double> min, max;  // bounds on numbers / array elements
   bool min_exclusive = false, max_exclusive = false;
   std::vector<std::string> choices;  // strings: one of these (empty = any string)
   bool strictly_increasing = false;  // arrays
-  bool name = false;                 // strings: non-empty, no '/', '\\', control characters
+  bool name = false;                 // strings: non-empty, no '/', '\\', control characters,
+                                     // at most kMaxNameBytes (a folder name)
 
   // "> 0", "in (0, 0.5]", ">= 1", "one of a, b", "each >= 0, strictly increasing", "" (anything).
   std::string text() const;
@@ -112,6 +116,15 @@ std::string format_value(const Value& value);
 std::string join(const std::vector<std::string>& items, std::string_view sep);
 std::string format_real(double x);            // shortest round-trip TOML float
 std::string toml_quoted(std::string_view s);  // TOML basic string with escapes
+
+// True if `s` is well-formed UTF-8 (no overlong forms, surrogates or code points above
+// U+10FFFF): TOML, JSON and the report need it.
+bool valid_utf8(std::string_view s);
+// `s` with each byte that is not part of well-formed UTF-8 replaced by `replacement`.
+std::string utf8_repaired(std::string_view s, char replacement);
+// `s` if it has at most `limit` bytes; otherwise its first bytes (cut at a character boundary)
+// and "... (N bytes)", so that a message stays one readable line.
+std::string abbreviated(std::string_view s, std::size_t limit = 120);
 
 // A rule over several keys. `check` returns the key to blame and why, e.g.
 // {"hydro.output_times", "every element must be <= hydro.t_end = 4.0 (from default), ..."}.

@@ -121,8 +121,8 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
   s.sigmas = c.real("compare.sigmas");
   s.verdict_rule.offset_sigmas = s.sigmas;
   s.agreement_fraction = c.real("compare.agreement_fraction");
-  s.density_modes = static_cast<int>(c.integer("compare.density_modes"));
-  const long long bins = c.integer("md.bins");
+  s.density_modes = c.int_value("compare.density_modes");
+  const long long bins = c.int_value("md.bins");
   if (2LL * s.density_modes >= bins) {
     throw ConfigError(c.origin("compare.density_modes") +
                       ": compare.density_modes = " + std::to_string(s.density_modes) +

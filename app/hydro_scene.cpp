@@ -1,7 +1,10 @@
 #include "app/hydro_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "app/work_estimate.hpp"
 #include "hydro/blowup_extrapolation.hpp"
 #include "hydro/cell_fields.hpp"
 #include "hydro/flow_by_inertia.hpp"
@@ -12,6 +15,86 @@
 
 namespace granvv::app {
 
+namespace {
+
+// A wave number needs this many cells per wavelength to be represented at all (2 is the
+// Nyquist limit of the mesh; the shipped clustering scene has 6.7 for its highest mode).
+constexpr int kMinCellsPerWavelength = 4;
+// Putting the random-mode sums on the mesh costs 9 x modes x cells cosines (three fields, a
+// 3-point quadrature per cell), twice during validation: 3e8 is a few seconds here.
+constexpr double kMaxFieldEvaluations = 3e8;
+
+// The wave-number keys of the initial condition that the case's type reads (the transverse
+// mode only when its amplitude is not zero): each must be resolved by the mesh.
+void check_resolved_modes(const CaseConfig& c, int cells) {
+  const std::string type = c.string("initial.type");
+  for (const auto& key : hydro::initial_parameter_keys()) {
+    const std::string& name = key.spec.name;
+    if (name != "mode" && name != "random_modes" && name != "transverse_mode") continue;
+    const bool read = key.types.empty()
+                          ? c.real("initial.transverse_amplitude") != 0.0
+                          : std::find(key.types.begin(), key.types.end(), type) != key.types.end();
+    if (!read) continue;
+    const std::string k = "initial." + name;
+    const long long mode = c.integer(k);
+    if (mode * kMinCellsPerWavelength <= cells) continue;
+    const std::string blamed = key_to_blame(c, {k, "hydro.cells"});
+    const std::string origin = c.origin(blamed);
+    throw ConfigError((origin == "default" ? c.source() : origin) + ": " + blamed + " = " +
+                      format_value(c.value(blamed)) + ": " + k + " = " + std::to_string(mode) +
+                      " on hydro.cells = " + std::to_string(cells) + " leaves fewer than " +
+                      std::to_string(kMinCellsPerWavelength) +
+                      " cells per wavelength; the mesh cannot represent it (allowed: " + k +
+                      " <= hydro.cells / " + std::to_string(kMinCellsPerWavelength) + " = " +
+                      std::to_string(cells / kMinCellsPerWavelength) + ")");
+  }
+  if (type == "random_modes") {
+    refuse_beyond(c, {"initial.random_modes", "hydro.cells"},
+                  9.0 * double(c.integer("initial.random_modes")) * cells, kMaxFieldEvaluations,
+                  "mode evaluations", "putting the random modes on the mesh");
+  }
+}
+
+// The clustering and shear modes the theory counts must fit an int (K not absurdly small).
+void check_mode_counts(const CaseConfig& c, const hydro::Physics& physics) {
+  try {
+    (void)hydro::shear_unstable_modes(physics);
+  } catch (const std::overflow_error&) {
+    throw ConfigError(c.origin("physics.K") +
+                      ": physics.K = " + format_value(c.value("physics.K")) +
+                      ": more than 2^31 unstable modes; K must be larger");
+  }
+}
+
+// The convergence study compares smooth solutions: it must end before the flow-by-inertia
+// singularity of the initial velocity (pressure only delays it), and fit the work budget.
+void check_convergence_study(const CaseConfig& c, const HydroScene& s) {
+  if (s.convergence_cells.empty()) return;
+  if (const auto inertia = hydro::inertia_reference(s.initial)) {
+    const double tau = inertia->flow.singularity_time();
+    if (std::isfinite(tau) && s.convergence_t >= tau) {
+      const std::string blamed =
+          key_to_blame(c, {"convergence.t", "initial.velocity_amplitude", "initial.mode"});
+      const std::string origin = c.origin(blamed);
+      throw ConfigError((origin == "default" ? c.source() : origin) + ": " + blamed + " = " +
+                        format_value(c.value(blamed)) +
+                        ": convergence.t = " + format_real(s.convergence_t) +
+                        " must be before the flow-by-inertia singularity of the initial "
+                        "velocity, tau = " +
+                        format_real(tau) + ": the study needs a smooth solution");
+    }
+  }
+  double cell_steps = 0.0;  // each level's step is at most min(dt_max, cfl / cells)
+  for (const int n : s.convergence_cells) {
+    cell_steps +=
+        double(n) * s.convergence_t / std::min(s.control.time_step.dt_max, s.convergence_cfl / n);
+  }
+  refuse_beyond(c, {"convergence.t", "convergence.cells", "convergence.cfl", "hydro.dt_max"},
+                cell_steps, kMaxCellSteps, "cell-steps", "the convergence study");
+}
+
+}  // namespace
+
 HydroScene hydro_scene_from(const CaseConfig& c) {
   HydroScene s;
   s.physics = {c.real("physics.K"), c.real("physics.q")};
@@ -19,7 +102,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   for (const auto& key : hydro::initial_parameter_keys()) {
     const std::string name = "initial." + key.spec.name;
     if (key.spec.is_integer()) {
-      values.set(key.spec.name, c.integer(name));
+      values.set(key.spec.name, static_cast<long long>(c.int_value(name)));
     } else {
       values.set(key.spec.name, c.real(name));
     }
@@ -27,7 +110,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   s.initial = hydro::initial_parameters(c.string("initial.type"), std::move(values));
   const auto& ini = s.initial;
   s.closure = "dilute";  // the paper's closure; a hydro.closure key comes with the closures issue
-  s.cells = static_cast<int>(c.integer("hydro.cells"));
+  s.cells = c.int_value("hydro.cells");
   s.node_offset = c.real("hydro.node_offset");
   s.transverse = c.boolean("hydro.transverse_velocity");
   s.progress_seconds = c.real("hydro.progress_seconds");
@@ -40,13 +123,13 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   ctl.time_step.dt_max = c.real("hydro.dt_max");
   ctl.stop_density = c.real("hydro.stop_density");
   ctl.min_cell_width = c.real("hydro.min_cell_width");
-  ctl.series_every = static_cast<int>(c.integer("hydro.series_every"));
+  ctl.series_every = c.int_value("hydro.series_every");
   s.tau_fit_min_density = c.real("analysis.tau_fit_min_density");
   s.tau_fit_max_density = c.real("analysis.tau_fit_max_density");
   s.profile_fit_x_min = c.real("analysis.profile_fit_x_min");
   s.profile_fit_x_max = c.real("analysis.profile_fit_x_max");
   s.collapse_tolerance = c.real("analysis.collapse_tolerance");
-  for (long long n : c.integers("convergence.cells")) s.convergence_cells.push_back(int(n));
+  s.convergence_cells = c.int_values("convergence.cells");
   s.convergence_t = c.real("convergence.t");
   s.convergence_cfl = c.real("convergence.cfl");
 
@@ -64,6 +147,13 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
     throw ConfigError(c.origin(key) + ": " + key + " = " + format_value(c.value(key)) + ": " +
                       problem->reason);
   }
+  check_mode_counts(c, s.physics);
+  check_resolved_modes(c, s.cells);
+  check_convergence_study(c, s);
+  // In a comparison the hydro runs to md.t_end instead (md_scene_from checks that run).
+  if (c.boolean("hydro.enabled") && !c.boolean("compare.enabled")) {
+    check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
+  }
   const auto fields = hydro::make_initial_fields(ini, s.physics);
   const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
   for (int i = 0; i < s.cells; ++i) {
@@ -74,6 +164,29 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
     }
   }
   return s;
+}
+
+void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
+                      const std::string& end_key) {
+  const auto& step = s.control.time_step;
+  // At least t_end / dt_max steps, before anything is allocated.
+  refuse_beyond(c, {end_key, "hydro.dt_max", "hydro.cells"},
+                double(s.cells) * std::ceil(t_end / step.dt_max), kMaxCellSteps, "cell-steps",
+                "the hydro run (" + end_key + " / hydro.dt_max steps)");
+  // The first step's size, kept to t_end: an estimate of the whole run.
+  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, s.physics), s.cells,
+                                       s.node_offset, false);
+  const auto closure = hydro::make_closure(s.closure, {s.physics, {}});
+  hydro::CellGeometry cells;
+  hydro::measure_cells(state, cells);
+  const hydro::TimeStepLimit first = hydro::TimeStepLimiter(*closure, step).limit(state, cells);
+  const std::string limiting = first.limited_by == "compression" ? "hydro.max_compression"
+                               : first.limited_by == "sound"     ? "hydro.cfl"
+                                                                 : "hydro.dt_max";
+  refuse_beyond(
+      c, {end_key, limiting, "hydro.cells", "physics.K"}, double(s.cells) * t_end / first.dt,
+      kMaxCellSteps, "cell-steps",
+      "the hydro run (first step " + format_real(first.dt) + ", limited by " + limiting + ")");
 }
 
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {
@@ -138,9 +251,9 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   if (scene.convergence_cells.size() >= 3) {
     auto time_step = scene.control.time_step;
     time_step.cfl = scene.convergence_cfl;
-    out.convergence =
-        hydro::run_convergence_study(*closure, out.fields, scene.convergence_cells,
-                                     scene.node_offset, scene.convergence_t, time_step);
+    out.convergence = hydro::run_convergence_study(
+        *closure, out.fields, scene.convergence_cells, scene.node_offset, scene.convergence_t,
+        time_step, {scene.control.stop_density, scene.control.min_cell_width}, progress);
   }
   return out;
 }

@@ -2,6 +2,7 @@
 // A case's hydro part: the engine's parameters read from the resolved case, the run, and
 // the checks against the exact solutions that the case's physics admits.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "app/case_config.hpp"
@@ -38,6 +39,12 @@ struct HydroScene {
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
 // engine cannot run (meshes that do not nest, fields that are negative somewhere...).
 HydroScene hydro_scene_from(const CaseConfig& config);
+
+// Throws ConfigError, naming the key the user set last among end_key, the step bounds and
+// hydro.cells, if the hydro run to t_end cannot finish (app/work_estimate.hpp): at least
+// t_end / dt_max steps, and t_end over the first step's size, times the cells.
+void check_hydro_work(const CaseConfig& config, const HydroScene& scene, double t_end,
+                      const std::string& end_key);
 
 struct SnapshotCheck {
   double t = 0.0;

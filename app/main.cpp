@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
@@ -52,6 +54,21 @@ int main(int argc, char** argv) {
       "report", "rebuild DIR/report.html from DIR/results.h5 (a run) or DIR/sweep.json (a sweep)");
   report_cmd->add_option("dir", report_dir, "output folder of a run or a sweep")->required();
 
+  if (argc >= 2 && argv[1][0] != '-') {  // CLI11 would only say "A subcommand is required"
+    const std::string command = argv[1];
+    bool known = false;
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      names.push_back(sub->get_name());
+      known |= sub->get_name() == command;
+    }
+    if (!known) {
+      report_input_error(ConfigError("unknown command '" + abbreviated(command) +
+                                     "'; the commands are " + join(names, ", ") +
+                                     " (granvv --help)"));
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -74,7 +91,7 @@ int main(int argc, char** argv) {
     try {
       scenes = list_scenes();
     } catch (const ConfigError& e) {
-      std::cerr << "granvv: error: " << e.what() << "\n";
+      report_input_error(e);
       return 2;
     }
     for (const auto& s : scenes) {

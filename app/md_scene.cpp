@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "app/work_estimate.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -20,6 +21,83 @@ double sampled_maximum(const std::function<double(double)>& f) {
   double largest = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < 4096; ++i) largest = std::max(largest, f(-0.5 + (i + 0.5) / 4096));
   return largest;
+}
+
+// The key behind a scene_problem (md_bridge/particle_scene.hpp), checked in its order: the
+// particle count comes from md.particles or, when that is 0, from physics.K; r from
+// md.restitution or, when that is 0, from physics.q.
+std::string scene_problem_key(const CaseConfig& c, const md::ParticleScene& sc) {
+  if (!(sc.area_fraction > 0.0 && sc.area_fraction <= 0.5)) return "md.area_fraction";
+  if (!(sc.box_width >= 4.0)) return "md.box_width";
+  if (!(sc.restitution > 0.0 && sc.restitution <= 1.0)) {
+    return c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q";
+  }
+  return c.integer("md.particles") > 0
+             ? "md.particles"
+             : key_to_blame(c, {"physics.K", "md.box_width", "md.area_fraction"});
+}
+
+[[noreturn]] void refuse(const CaseConfig& c, const std::string& key, const std::string& why) {
+  const std::string origin = c.origin(key);
+  throw ConfigError((origin == "default" ? c.source() : origin) + ": " + key + " = " +
+                    abbreviated(format_value(c.value(key)), 80) + ": " + why);
+}
+
+// Work and output of the particle run, estimated from the contact the [md] keys ask for
+// (docs/physics.md §5): the step is tc / md.steps_per_contact with tc ~ pi md.max_overlap / u
+// for the fastest relative speed u, about twice the fastest speed of N Maxwellian disks
+// (sqrt(2 T ln N), T the hottest initial temperature) plus the flow. With adaptive stiffness
+// the step grows as u falls with Haff's law, u ~ 1/(1 + t/t0), so steps ~ (t0/dt0) ln(1 +
+// t_end/t0).
+void check_particle_work(const CaseConfig& c, const MdScene& s, double t_haff) {
+  const auto& spec = s.spec;
+  const auto& sc = spec.scene;
+  const double n = double(sc.particles);
+  const double hottest = std::max(1.0, sampled_maximum(spec.fields.T));
+  const double flow =
+      std::max(0.0, sampled_maximum([&](double x) {
+                 return std::abs(spec.fields.v(x));  // x and t both scale with Lx: v is the same
+               }));
+  const double u = 2.0 * (std::sqrt(2.0 * hottest * std::log(std::max(n, 2.0))) + flow);
+  const double dt0 = 3.14159265358979323846 * c.real("md.max_overlap") / u /
+                     double(c.int_value("md.steps_per_contact"));
+  const bool adaptive = c.boolean("md.adaptive_stiffness");
+  const double steps = adaptive && std::isfinite(t_haff) && t_haff > 0.0
+                           ? t_haff / dt0 * std::log1p(spec.t_end / t_haff)
+                           : spec.t_end / dt0;
+  refuse_beyond(
+      c, {"md.t_end", "md.ensemble", "md.particles", "md.steps_per_contact", "md.max_overlap"},
+      n * s.ensemble * steps, kMaxAtomSteps, "atom-steps",
+      "the particle run (" + std::to_string(s.ensemble) + " x " + std::to_string(sc.particles) +
+          " disks, first step ~" + format_real(dt0) + ")");
+  // A sample interval below the step skips requested times: the run passes a snapshot time
+  // within one step without stopping at it (the last one is lost). The step at the end of the
+  // run, where adaptive stiffness has made it longest, is the one that counts.
+  const double dt_end =
+      adaptive && std::isfinite(t_haff) && t_haff > 0.0 ? dt0 * (1.0 + spec.t_end / t_haff) : dt0;
+  if (spec.sample_interval < dt_end) {
+    refuse(c, "md.sample_interval",
+           "below the particle time step (about " + format_real(dt0) + " at the start, " +
+               format_real(dt_end) +
+               " at md.t_end, MD time); the run cannot sample more often than every step");
+  }
+  const double segments =
+      s.ensemble * (spec.t_end / spec.sample_interval +
+                    (spec.snapshot_interval > 0 ? spec.t_end / spec.snapshot_interval : 0.0) +
+                    double(spec.output_times.size()));
+  refuse_beyond(c, {"md.sample_interval", "md.snapshot_interval", "md.t_end", "md.ensemble"},
+                segments, kMaxSegments, "segments",
+                "the particle run in segments (one per sample, frame or snapshot, each with its "
+                "engine log)");
+  const double frame_bytes =
+      spec.snapshot_interval > 0
+          ? s.ensemble * (spec.t_end / spec.snapshot_interval + 1.0) * n * 6.0 * sizeof(double)
+          : 0.0;
+  const double series_bytes = s.ensemble * (spec.t_end / spec.sample_interval + 1.0) * 16.0 *
+                              sizeof(double) * (spec.snapshot_interval > 0 ? 6.0 : 1.0);
+  refuse_beyond(c, {"md.snapshot_interval", "md.sample_interval", "md.t_end", "md.ensemble"},
+                frame_bytes + series_bytes, kMaxOutputBytes, "bytes",
+                "the particle output (H5MD frames and time series)");
 }
 
 }  // namespace
@@ -41,22 +119,22 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   const double r_key = c.real("md.restitution");
   const double r = r_key > 0.0 ? r_key : 1.0 - 2.0 * hydro.physics.q;
   const double phi = c.real("md.area_fraction"), ly = c.real("md.box_width");
-  const long long n = c.integer("md.particles");
+  const long long n = c.int_value("md.particles");
   spec.scene = n > 0 ? md::scene_from_particles(n, phi, ly, r)
                      : md::scene_from_scaled(hydro.physics.K, 0.5 * (1.0 - r), phi, ly);
   const std::string problem = md::scene_problem(spec.scene);
   if (!problem.empty()) {
-    throw ConfigError(c.origin("md.particles") + ": impossible particle scene: " + problem);
+    refuse(c, scene_problem_key(c, spec.scene), "impossible particle scene: " + problem);
   }
   spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
-  spec.seed = static_cast<std::uint64_t>(c.integer("md.seed"));
+  spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
   spec.t_end = c.real("md.t_end");
   spec.sample_interval = c.real("md.sample_interval");
   spec.output_times = c.reals("md.output_times");
-  spec.bins = static_cast<int>(c.integer("md.bins"));
+  spec.bins = c.int_value("md.bins");
   spec.kernel = c.string("md.kernel");
   spec.kernel_width = c.real("md.kernel_width");
-  s.ensemble = static_cast<int>(c.integer("md.ensemble"));
+  s.ensemble = c.int_value("md.ensemble");
   s.engine = c.string("md.engine");
   for (const KeySpec& key : case_schema()) {
     if (key.section() != "md") continue;
@@ -65,8 +143,16 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
     if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
   }
   spec.snapshot_interval = c.real("md.snapshot_interval");
+  const double t_haff = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
   if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
-    const double t0 = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
+    const double t0 = t_haff;
+    if (!(std::isfinite(t0) && t0 > 0.0)) {
+      refuse(c, c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q",
+             "the gas does not cool (r = " + format_real(spec.scene.restitution) +
+                 "), so its Haff time is infinite and md.time_unit = \"haff\" " + "(from " +
+                 c.origin("md.time_unit") + ") gives no end time; use r < 1 or " +
+                 "md.time_unit = \"md\"");
+    }
     spec.t_end *= t0;
     spec.sample_interval *= t0;
     for (double& t : spec.output_times) t *= t0;
@@ -98,6 +184,10 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       std::to_string(spec.scene.particles) +
                       " disks; above 2e6 a single-node run here takes too long (use MPI on a "
                       "cluster, or a larger K / smaller md.box_width)");
+  }
+  check_particle_work(c, s, t_haff);
+  if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units
+    check_hydro_work(c, hydro, spec.t_end / spec.scene.box_length, "md.t_end");
   }
   try {
     (void)make_engine(s, "");

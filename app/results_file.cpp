@@ -46,7 +46,7 @@ void write_lagrangian(H5::Group g, const HydroOutcome& out) {
 
 void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out) {
   const auto& p = scene.physics;
-  const int kmax = std::max(2 * out.shear_unstable_modes, 20);
+  const int kmax = std::clamp(2 * out.shear_unstable_modes, 20, 10000);  // at most 240 kB
   std::vector<double> k, clustering, shear;
   for (int m = 1; m <= kmax; ++m) {
     k.push_back(m);

@@ -109,11 +109,6 @@ HydroOutcome run_continuum(const HydroScene& scene, spdlog::logger& log) {
   return outcome;
 }
 
-std::string summary_text(const nlohmann::json& summary) {
-  // Bytes that are not UTF-8 (in a folder or case name) are written as U+FFFD, not refused.
-  return summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-}
-
 // The end of the output protocol (docs/outputs.md): the summary and the report are written into
 // the staging folder, which then replaces the previous outputs, or, for an interrupted run, is
 // kept beside them as interrupted-run/. If not even the summary can be written, nothing of this
@@ -200,7 +195,7 @@ int run_command(const RunOptions& options) {
     md_scene = md_scene_from(*loaded, scene);
     compare_scene = compare_scene_from(*loaded);
   } catch (const ConfigError& e) {
-    std::cerr << "granvv: error: " << e.what() << "\n";
+    report_input_error(e);
     return 2;
   }
   const CaseConfig& config = *loaded;
@@ -256,8 +251,7 @@ int run_command(const RunOptions& options) {
   int exit_code = 0;
   bool interrupted = false;
   std::optional<MdOutcome> md;  // kept when a later part fails
-  const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(),
-                         config.flattened()};
+  const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
   try {
     write_output(ranks, work / "case.toml",
                  [&] { write_file_atomically(work / "case.toml", config.resolved_toml()); });

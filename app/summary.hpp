@@ -2,11 +2,16 @@
 // summary.json: the contract other tools read (docs/outputs.md). Numbers are numbers; results
 // a scene does not have are null.
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/hydro_scene.hpp"
 
 namespace granvv::app {
 
 nlohmann::json hydro_summary(const HydroScene& scene, const HydroOutcome& outcome);
+
+// The text of summary.json (or sweep.json): indented, with any byte that is not UTF-8
+// replaced, so that writing a summary never throws.
+std::string summary_text(const nlohmann::json& summary);
 
 }  // namespace granvv::app

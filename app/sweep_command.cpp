@@ -20,6 +20,7 @@
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
+#include "app/summary.hpp"
 #include "compare/cooling_sweep.hpp"
 
 namespace granvv::app {
@@ -134,8 +135,7 @@ void refuse_repeated_values(const SweptKey& swept, const std::vector<double>& nu
 }
 
 void write_sweep_json(const fs::path& dir, const json& sweep) {
-  write_file_atomically(dir / "sweep.json",
-                        sweep.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  write_file_atomically(dir / "sweep.json", summary_text(sweep));
 }
 
 // The regression on the restitution coefficient over the points that measured a Haff time.
@@ -226,7 +226,7 @@ int sweep_command(const SweepOptions& options) {
     }
     refuse_repeated_values(swept, numeric_values);
   } catch (const ConfigError& e) {
-    std::cerr << "granvv: error: " << e.what() << "\n";
+    report_input_error(e);
     return 2;
   }
   std::string key_name = swept.key;

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include "hydro/driver.hpp"
 
@@ -58,7 +60,8 @@ std::string convergence_mesh_problem(const std::vector<int>& cells, double node_
 
 ConvergenceStudy run_convergence_study(const Closure& closure, const InitialFields& fields,
                                        const std::vector<int>& cells, double node_offset, double t,
-                                       const TimeStepControl& base) {
+                                       const TimeStepControl& base, const ConvergenceStops& stops,
+                                       const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   ConvergenceStudy study;
   study.t = t;
@@ -71,12 +74,19 @@ ConvergenceStudy run_convergence_study(const Closure& closure, const InitialFiel
     control.time_step = base;
     // Tie the step to the cell size everywhere, so that space and time errors shrink together.
     control.time_step.dt_max = std::min(base.dt_max, base.cfl / n);
-    control.stop_density = 1e300;
-    control.min_cell_width = 0.0;
+    control.stop_density = stops.stop_density;
+    control.min_cell_width = stops.min_cell_width;
     control.series_every = 1 << 30;
-    finals.push_back(run_hydro(closure, discretize(fields, n, node_offset, false), control)
-                         .snapshots.back()
-                         .state);
+    RunResult level =
+        run_hydro(closure, discretize(fields, n, node_offset, false), control, progress);
+    if (level.status != RunStatus::completed) {
+      throw std::runtime_error(
+          "convergence study: the " + std::to_string(n) +
+          "-cell level stopped at t = " + std::to_string(level.snapshots.back().state.t) +
+          ", before convergence.t = " + std::to_string(t) + " (" + level.stop_reason +
+          "); the study needs a smooth solution");
+    }
+    finals.push_back(std::move(level.snapshots.back().state));
   }
   for (size_t l = 0; l + 1 < cells.size(); ++l) {
     const auto e = compare_levels(finals[l], finals[l + 1], cells[l + 1] / cells[l], node_offset);

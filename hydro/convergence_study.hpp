@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hydro/closure.hpp"
+#include "hydro/driver.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/time_step.hpp"
 
@@ -27,8 +28,19 @@ struct ConvergenceStudy {
 // Returns an explanation if these meshes do not nest (an empty string if they do).
 std::string convergence_mesh_problem(const std::vector<int>& cells, double node_offset);
 
+// The stop conditions of the case (hydro.stop_density, hydro.min_cell_width): a level that
+// meets one before t has left the smooth solution the study needs.
+struct ConvergenceStops {
+  double stop_density = 0.0;
+  double min_cell_width = 0.0;
+};
+
+// Runs every level to t, reporting each level's steps through `progress`. Throws
+// std::runtime_error naming the level, the time and the reason if a level stops before t
+// (singularity or no admissible step): a study past a singularity has no answer.
 ConvergenceStudy run_convergence_study(const Closure& closure, const InitialFields& fields,
                                        const std::vector<int>& cells, double node_offset, double t,
-                                       const TimeStepControl& base);
+                                       const TimeStepControl& base, const ConvergenceStops& stops,
+                                       const ProgressCallback& progress = {});
 
 }  // namespace granvv::hydro

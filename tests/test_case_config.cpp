@@ -223,7 +223,8 @@ TEST(CaseConfig, SetRepairsABadFileValue) {
 TEST(CaseConfigErrors, ValueOutOfRange) {
   const std::string case_text = "[case]\nname = \"x\"\n\n[physics]\nq = 0.01\n\nK = -0.001\n";
   const std::string m = error_of(case_text);
-  EXPECT_EQ(m.rfind("cases/x.toml:7:5: physics.K = -0.001: must be > 0 (Knudsen number", 0), 0u)
+  EXPECT_EQ(m.rfind("cases/x.toml:7:5: physics.K = -0.001: must be in (0, 100] (Knudsen number", 0),
+            0u)
       << m;
 }
 
@@ -240,7 +241,7 @@ TEST(CaseConfigErrors, ValueOutsideInterval) {
 
 TEST(CaseConfigErrors, IntegerBelowMinimum) {
   const std::string m = error_of(std::string(kMinimalCase) + "[hydro]\ncells = 3\n");
-  EXPECT_CONTAINS(m, "cases/x.toml:5:9: hydro.cells = 3: must be >= 4 (number of");
+  EXPECT_CONTAINS(m, "cases/x.toml:5:9: hydro.cells = 3: must be in [4, 1e7] (number of");
 }
 
 TEST(CaseConfigErrors, UnknownKeySuggestsClosest) {
@@ -271,7 +272,7 @@ TEST(CaseConfigErrors, TableExpected) {
 
 TEST(CaseConfigErrors, WrongTypeInFile) {
   const std::string m = error_of("[physics]\nK = 1e-3\nq = 0.1\n\n[hydro]\ncells = \"many\"\n");
-  EXPECT_EQ(m, "cases/x.toml:6:9: hydro.cells = \"many\": expected an integer >= 4");
+  EXPECT_EQ(m, "cases/x.toml:6:9: hydro.cells = \"many\": expected an integer in [4, 1e7]");
   const std::string b = error_of(std::string(kMinimalCase) + "[hydro]\ntransverse_velocity = 1\n");
   EXPECT_CONTAINS(b, "hydro.transverse_velocity = 1: expected a boolean (true or false)");
   const std::string a =
@@ -281,14 +282,14 @@ TEST(CaseConfigErrors, WrongTypeInFile) {
 
 TEST(CaseConfigErrors, RealWhereIntegerExpected) {
   const std::string m = error_of(std::string(kMinimalCase) + "[hydro]\ncells = 2000.0\n");
-  EXPECT_EQ(m, "cases/x.toml:5:9: hydro.cells = 2000.0: expected an integer >= 4");
+  EXPECT_EQ(m, "cases/x.toml:5:9: hydro.cells = 2000.0: expected an integer in [4, 1e7]");
 }
 
 TEST(CaseConfigErrors, WrongTypeInOverride) {
   const std::string m = error_of(kMinimalCase, {"hydro.cells=2.5"});
-  EXPECT_EQ(m, "--set hydro.cells=2.5: hydro.cells = 2.5: expected an integer >= 4");
+  EXPECT_EQ(m, "--set hydro.cells=2.5: hydro.cells = 2.5: expected an integer in [4, 1e7]");
   const std::string s = error_of(kMinimalCase, {"physics.K=small"});
-  EXPECT_EQ(s, "--set physics.K=small: physics.K = \"small\": expected a real > 0");
+  EXPECT_EQ(s, "--set physics.K=small: physics.K = \"small\": expected a real in (0, 100]");
 }
 
 TEST(CaseConfigErrors, OverrideOutOfRange) {
@@ -345,7 +346,7 @@ TEST(CaseConfigErrors, MissingRequiredKey) {
 
 TEST(CaseConfigErrors, RejectsNanAndInfinity) {
   const std::string m = error_of("[physics]\nK = nan\nq = 0.1\n");
-  EXPECT_CONTAINS(m, "cases/x.toml:2:5: physics.K = nan: must be a finite real > 0");
+  EXPECT_CONTAINS(m, "cases/x.toml:2:5: physics.K = nan: must be a finite real in (0, 100]");
   const std::string o = error_of(kMinimalCase, {"hydro.t_end=inf"});
   EXPECT_CONTAINS(o, "--set hydro.t_end=inf: hydro.t_end = inf: must be a finite real > 0");
   const std::string a = error_of(kMinimalCase, {"hydro.output_times=[1, -inf]"});
@@ -366,11 +367,11 @@ TEST(CaseConfigErrors, ArrayElements) {
                   "strictly increasing");
   const std::string small = error_of(kMinimalCase, {"convergence.cells=[2,8]"});
   EXPECT_CONTAINS(small,
-                  "convergence.cells = [2, 8]: every element must be >= 4, but element 1 "
+                  "convergence.cells = [2, 8]: every element must be in [4, 1e7], but element 1 "
                   "is 2");
   const std::string real = error_of(kMinimalCase, {"convergence.cells=[8,16.5]"});
   EXPECT_CONTAINS(real,
-                  "convergence.cells = [8, 16.5]: expected an array of integers, each >= 4, "
+                  "convergence.cells = [8, 16.5]: expected an array of integers, each in [4, 1e7], "
                   "strictly increasing");
 }
 
@@ -401,7 +402,7 @@ TEST(CaseConfigErrors, FitWindowsMustBeOrdered) {
 
 TEST(CaseConfigErrors, BadCaseName) {
   const std::string m = error_of(std::string(kMinimalCase) + "[case]\nname = \"../up\"\n");
-  EXPECT_CONTAINS(m, "case.name = \"../up\": must be non-empty, without '/'");
+  EXPECT_CONTAINS(m, "case.name = \"../up\": must be non-empty, at most 255 bytes, without '/'");
 }
 
 TEST(CaseConfigErrors, FirstProblemInFileIsReported) {
@@ -489,6 +490,78 @@ TEST(CaseConfigSchema, ConstraintTexts) {
   EXPECT_EQ(format_real(123456.5), "123456.5");
   EXPECT_EQ(format_real(0.0), "0.0");
   EXPECT_EQ(format_real(3e-7), "3e-7");
+}
+
+}  // namespace
+}  // namespace granvv::app
+
+// ---------------------------------------------------------------------------------------------
+// Issue 9: integers, text and the key a message names
+// ---------------------------------------------------------------------------------------------
+namespace granvv::app {
+namespace {
+
+TEST(CaseSchemaIntegers, EveryIntegerKeyIsBoundedWithinAnInt) {
+  for (const KeySpec& spec : case_schema()) {
+    if (spec.type != ValueType::integer && spec.type != ValueType::integer_array) continue;
+    ASSERT_TRUE(spec.constraint.max.has_value()) << spec.key;
+    EXPECT_LE(*spec.constraint.max, 2147483647.0) << spec.key;
+    EXPECT_TRUE(spec.constraint.min.has_value()) << spec.key;
+  }
+}
+
+TEST(CaseSchemaIntegers, BeyondAnIntIsRefusedWithTheKeyAndRange) {
+  // 2^32 + 4 truncates to 4 as an int: it must be refused, naming the key that was wrong.
+  EXPECT_EQ(error_of(kMinimalCase, {"hydro.cells=4294967300"}),
+            "--set hydro.cells=4294967300: hydro.cells = 4294967300: must be in [4, 1e7] "
+            "(number of Lagrangian cells)");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"initial.mode=4294967297"}),
+                  "initial.mode = 4294967297: must be in [1, 2147483647]");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"md.ensemble=4294967296"}),
+                  "md.ensemble = 4294967296: must be in [1, 1000]");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"hydro.series_every=4294967296"}),
+                  "hydro.series_every = 4294967296: must be in [1, 2147483647]");
+  // Beyond int64 TOML has no integer: the value is a bare string, not an integer.
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"hydro.cells=99999999999999999999"}),
+                  "expected an integer in [4, 1e7]");
+}
+
+TEST(CaseSchemaIntegers, IntValueReadsTheCheckedValue) {
+  const CaseConfig c = load(kMinimalCase, {"hydro.cells=12", "convergence.cells=[5, 15, 45]"});
+  EXPECT_EQ(c.int_value("hydro.cells"), 12);
+  EXPECT_EQ(c.int_values("convergence.cells"), (std::vector<int>{5, 15, 45}));
+  EXPECT_THROW((void)c.int_value("physics.K"), std::logic_error);
+}
+
+TEST(CaseText, NonUtf8AndOverlongStrings) {
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"case.description=a\xff"}),
+                  "case.description = \"a\xff\": must be valid UTF-8 text");
+  EXPECT_CONTAINS(error_of(kMinimalCase, {"case.name=\xc0\xaf"}), "must be valid UTF-8 text");
+  // A 300 kB name is refused (a folder name has at most 255 bytes) and not echoed whole.
+  const std::string name(300000, 'a');
+  const std::string m = error_of(std::string(kMinimalCase) + "[case]\nname = \"" + name + "\"\n");
+  EXPECT_LT(m.size(), 600u);
+  EXPECT_CONTAINS(m, "... (300000 bytes)");
+  EXPECT_CONTAINS(m, "at most 255 bytes");
+  EXPECT_TRUE(valid_utf8("é€𝄞"));
+  EXPECT_FALSE(valid_utf8("\xed\xa0\x80"));      // a surrogate
+  EXPECT_FALSE(valid_utf8("\xf4\x90\x80\x80"));  // above U+10FFFF
+  EXPECT_FALSE(valid_utf8("\xe0\x80\xaf"));      // overlong
+  EXPECT_EQ(utf8_repaired("a\xff\xc3\xa9", '_'), "a_\xc3\xa9");
+}
+
+TEST(CaseText, DefaultNameFromAFileNameIsAFolderName) {
+  const CaseConfig c = CaseConfig::from_string(kMinimalCase, "cases/x\xff\x01y.toml");
+  EXPECT_EQ(c.name(), "x__y");
+  // The resolved case names its source with the bad bytes replaced, and parses again.
+  const CaseConfig again = CaseConfig::from_string(c.resolved_toml(), "again.toml");
+  EXPECT_EQ(again.flattened(), c.flattened());
+}
+
+TEST(CaseOrigins, TheLaterSetIsBlamed) {
+  const CaseConfig c = load(kMinimalCase, {"hydro.t_end=2", "hydro.dt_max=1e-3"});
+  EXPECT_GT(c.origin_precedence("hydro.dt_max"), c.origin_precedence("hydro.t_end"));
+  EXPECT_GT(c.origin_precedence("hydro.t_end"), c.origin_precedence("hydro.cells"));
 }
 
 }  // namespace
