@@ -368,7 +368,9 @@ int run_command(const RunOptions& options) {
   }
   // A particle run that finished is kept even if a later part failed: a failed write removes
   // the half-written results.h5 (app/output_folder.hpp), so its /md group is written again.
-  if (md && !interrupted && !fs::exists(work / "results.h5")) {
+  // Whether the file is gone is known on the writer; every rank takes the same branch, since
+  // write_output is collective.
+  if (md && !interrupted && !all_ranks_ok(ranks, !(writer && !fs::exists(work / "results.h5")))) {
     try {
       write_output(ranks, work / "results.h5", [&] {
         create_results_file(work / "results.h5", meta);
