@@ -168,6 +168,8 @@ std::vector<KeySpec> rows_without_initial() {
        "lower kn and raise dt as the gas cools, restitution fixed"},
       {"md.snapshot_interval", kReal, 0.0, non_negative(),
        "H5MD particle snapshots every this much MD time; 0 = none"},
+      {"md.checkpoint_interval", kReal, 300.0, non_negative(),
+       "wall seconds between checkpoints of the particle run (`granvv resume`); 0 = none"},
       {"md.time_unit", kString, "md", one_of({"md", "haff"}),
        "unit of md.t_end, md.sample_interval and md.output_times: MD time (sigma sqrt(m/T0)) "
        "or the kinetic-theory Haff time t0 with chi(phi) (same cooling depth for every r)"},

@@ -7,6 +7,7 @@
 
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
+#include "app/md_checkpoint.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
@@ -28,6 +29,16 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run.quiet, "no progress lines on stderr");
   bool no_report = false;
   run_cmd->add_flag("--no-report", no_report, "skip report.html (results.h5, summary.json only)");
+  run_cmd->add_flag("--resume", run.resume,
+                    "continue the checkpoints in the output folder if they are of this case");
+
+  std::string resume_dir;
+  bool resume_quiet = false, resume_no_report = false;
+  auto* resume_cmd = app.add_subcommand(
+      "resume", "continue the interrupted run in DIR from its last checkpoint (its own case)");
+  resume_cmd->add_option("dir", resume_dir, "output folder of the interrupted run")->required();
+  resume_cmd->add_flag("--quiet", resume_quiet, "no progress lines on stderr");
+  resume_cmd->add_flag("--no-report", resume_no_report, "skip report.html");
 
   SweepOptions sweep;
   auto* sweep_cmd = app.add_subcommand(
@@ -79,6 +90,25 @@ int main(int argc, char** argv) {
   if (*run_cmd) {
     run.report = !no_report;
     const int code = run_command(run);
+    if (hdf5_broken()) end_process_now(code);
+    return code;
+  }
+  if (*resume_cmd) {
+    const std::filesystem::path case_file = checkpoint_folder(resume_dir) / "case.toml";
+    if (!std::filesystem::is_regular_file(case_file)) {
+      report_input_error(ConfigError("granvv resume: " + abbreviated(resume_dir) +
+                                     " holds no checkpoint (no " + abbreviated(case_file.string()) +
+                                     "); only particle runs with md.checkpoint_interval > 0 "
+                                     "leave one"));
+      return 2;
+    }
+    RunOptions resumed;
+    resumed.case_name = case_file.string();
+    resumed.out_dir = resume_dir;
+    resumed.quiet = resume_quiet;
+    resumed.report = !resume_no_report;
+    resumed.resume = true;
+    const int code = run_command(resumed);
     if (hdf5_broken()) end_process_now(code);
     return code;
   }

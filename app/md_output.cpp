@@ -90,6 +90,13 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   };
   block.update(md_cost_summary(out));
   add_engine_details(block, out.engine_details);
+  block["checkpoints"] = {
+      {"interval_seconds", scene.checkpoint_interval},
+      {"written", out.checkpoints_written},
+      {"resumed", out.resumed_member >= 0 || out.members_restored > 0},
+      {"members_restored", out.members_restored},
+      {"resumed_member", out.resumed_member >= 0 ? json(out.resumed_member) : json()},
+      {"resumed_t", out.resumed_member >= 0 ? json(out.resumed_t) : json()}};
   return block;
 }
 
@@ -126,14 +133,10 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
     }
     return all;
   };
-  write_matrix(ts, "T", stack(&md::MdSeries::T), members);
-  write_matrix(ts, "energy_thermal", stack(&md::MdSeries::energy_thermal), members);
-  write_matrix(ts, "energy_kinetic_x", stack(&md::MdSeries::energy_kinetic_x), members);
-  write_matrix(ts, "energy_kinetic_y", stack(&md::MdSeries::energy_kinetic_y), members);
-  write_matrix(ts, "energy_total", stack(&md::MdSeries::energy_total), members);
-  write_matrix(ts, "kinetic_noise_x", stack(&md::MdSeries::kinetic_noise_x), members);
-  write_matrix(ts, "kinetic_noise_y", stack(&md::MdSeries::kinetic_noise_y), members);
-  write_matrix(ts, "momentum_x", stack(&md::MdSeries::momentum_x), members);
+  for (const auto& column : md::md_series_columns()) {
+    if (column.values != &md::MdSeries::t)
+      write_matrix(ts, column.name, stack(column.values), members);
+  }
   for (std::size_t i = 0; i < base.engine.size(); ++i) {  // the engine's own series
     std::vector<double> all;
     for (const auto& run : out.runs) {

@@ -1,5 +1,7 @@
 #include "app/md_scene.hpp"
 
+#include <mpi.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -136,6 +138,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   spec.kernel_width = c.real("md.kernel_width");
   s.ensemble = c.int_value("md.ensemble");
   s.engine = c.string("md.engine");
+  s.checkpoint_interval = c.real("md.checkpoint_interval");
   for (const KeySpec& key : case_schema()) {
     if (key.section() != "md") continue;
     if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
@@ -206,8 +209,10 @@ std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std:
 }
 
 MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
-                       const std::function<void(int, const md::MdProgress&)>& progress) {
-  const auto start = std::chrono::steady_clock::now();
+                       const std::function<void(int, const md::MdProgress&)>& progress,
+                       const MdCheckpointing* checkpointing) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
   MdOutcome out;
   const auto& sc = scene.spec.scene;
   out.engine = engine.name();
@@ -219,19 +224,72 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
         << " by more than 1e-3; refusing the run";
     throw std::runtime_error(why.str());
   }
+  const bool saving = checkpointing && !checkpointing->out_dir.empty();
+  const std::vector<MemberCheckpoint> none;
+  const auto& resume = checkpointing ? checkpointing->resume : none;
+  double wall_before = 0.0;  // the particle part of the runs this one continues
+  auto last_save = clock::now();
+  auto since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  auto save = [&](int member, MemberCheckpoint c) {
+    c.particle_part_wall_seconds = wall_before + since(start);
+    try {
+      save_member_checkpoint(checkpointing->out_dir, member, c);
+      ++out.checkpoints_written;
+    } catch (const std::exception& e) {
+      if (checkpointing->warn) checkpointing->warn(e.what());
+    }
+    last_save = clock::now();
+  };
   std::vector<std::vector<double>> ts, Ts;
   for (int m = 0; m < scene.ensemble; ++m) {
-    md::MdRunSpec spec = scene.spec;
-    spec.seed += static_cast<std::uint64_t>(m);
-    if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
-      const std::filesystem::path p = spec.h5md_path;
-      spec.h5md_path = (p.parent_path() /
-                        (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
-                           .string();
+    const MemberCheckpoint* earlier =
+        m < static_cast<int>(resume.size()) ? &resume[std::size_t(m)] : nullptr;
+    if (earlier) wall_before = earlier->particle_part_wall_seconds;
+    if (earlier && earlier->finished) {  // its result as it was, and the engine's totals after it
+      engine.restore_state(earlier->state.engine);
+      out.runs.push_back(earlier->state.so_far);
+      ++out.members_restored;
+    } else {
+      md::MdRunSpec spec = scene.spec;
+      spec.seed += static_cast<std::uint64_t>(m);
+      if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
+        const std::filesystem::path p = spec.h5md_path;
+        spec.h5md_path = (p.parent_path() /
+                          (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
+                             .string();
+      }
+      md::MdCheckpoints checkpoints;
+      if (saving) {
+        checkpoints.due = [&] {
+          return (checkpointing->interval_seconds > 0.0 &&
+                  since(last_save) >= checkpointing->interval_seconds) ||
+                 (checkpointing->stop_requested && checkpointing->stop_requested());
+        };
+        checkpoints.save = [&](const md::MdRunState& state) { save(m, {false, state, 0.0}); };
+      }
+      if (earlier) {
+        checkpoints.resume_from = &earlier->state;
+        out.resumed_member = m;
+        out.resumed_t = earlier->state.t;
+      }
+      out.runs.push_back(md::run_md(
+          spec, engine,
+          [&](const md::MdProgress& p) {
+            if (progress) progress(m, p);
+          },
+          checkpoints));
+      if (saving) {  // the finished member, and the engine's totals after it
+        md::MdRunState done;
+        done.engine = engine.save_state();
+        done.engine.particles = {};
+        done.so_far = out.runs.back();
+        int rank = 0;
+        MPI_Comm_rank(engine.comm(), &rank);
+        if (rank == 0) save(m, {true, done, 0.0});
+      }
     }
-    out.runs.push_back(md::run_md(spec, engine, [&](const md::MdProgress& p) {
-      if (progress) progress(m, p);
-    }));
     ts.push_back(out.runs.back().series.t);
     Ts.push_back(out.runs.back().series.T);
   }
@@ -248,8 +306,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   out.fields = compare::ensemble_field_series(members);
   out.cost = engine.cost();
   out.engine_details = engine.details();
-  out.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_seconds = wall_before + since(start);
   return out;
 }
 

@@ -11,6 +11,7 @@
 
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/md_checkpoint.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/haff_fit.hpp"
 #include "md_bridge/md_run.hpp"
@@ -18,9 +19,10 @@
 namespace granvv::app {
 
 struct MdScene {
-  md::MdRunSpec spec;  // spec.seed is the first seed; member m uses seed + m
-  int ensemble = 0;    // md.ensemble
-  std::string engine;  // md.engine
+  md::MdRunSpec spec;                // spec.seed is the first seed; member m uses seed + m
+  int ensemble = 0;                  // md.ensemble
+  std::string engine;                // md.engine
+  double checkpoint_interval = 0.0;  // md.checkpoint_interval, wall seconds (0 = none)
   // Every number and boolean of [md] by key: the engine reads the ones it understands.
   md::EngineSettings engine_settings;
 };
@@ -54,11 +56,30 @@ struct MdOutcome {
   // the ensemble (compare/ensemble_fields.hpp; each member's own are in runs[m].fields).
   compare::EnsembleStatistics T;
   fields::FieldSeries fields;
+  // Checkpoints (app/md_checkpoint.hpp): how many this run wrote, and where it resumed (member
+  // -1: it started anew). wall_seconds includes the particle part of the runs it continued.
+  int checkpoints_written = 0;
+  int resumed_member = -1;
+  double resumed_t = 0.0;
+  int members_restored = 0;  // finished members taken from the checkpoints
+};
+
+// Checkpoints of the particle part: into out_dir/.granvv-checkpoint every interval_seconds of
+// wall time, and when stop_requested() says so (a signal: the run then stops at its next safe
+// point with nothing lost). resume holds the checkpoints of an earlier run of the same case.
+struct MdCheckpointing {
+  std::filesystem::path out_dir;
+  double interval_seconds = 0.0;
+  std::function<bool()> stop_requested;
+  std::vector<MemberCheckpoint> resume;
+  std::function<void(const std::string&)> warn;  // a checkpoint that could not be written
 };
 
 // Throws std::runtime_error if the restitution the engine's collision rule really has misses
 // the target by more than 1e-3 (the run is refused).
+// With checkpointing null (or its out_dir empty) nothing is saved.
 MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
-                       const std::function<void(int member, const md::MdProgress&)>& progress);
+                       const std::function<void(int member, const md::MdProgress&)>& progress,
+                       const MdCheckpointing* checkpointing = nullptr);
 
 }  // namespace granvv::app

@@ -19,6 +19,7 @@
 #include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
 #include "app/interruption.hpp"
+#include "app/md_checkpoint.hpp"
 #include "app/md_output.hpp"
 #include "app/md_scene.hpp"
 #include "app/mpi_ranks.hpp"
@@ -54,25 +55,36 @@ double progress_fraction(const hydro::Progress& p) {
 
 // The particle engine with a progress line every progress_seconds and its throughput.
 MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double progress_seconds,
-                        spdlog::logger& log) {
+                        const MdCheckpointing& checkpointing, spdlog::logger& log) {
   const auto& sc = scene.spec.scene;
   log.info(
       "md: {} disks, Lx = {:.6g}, Ly = {:.6g} sigma, phi = {:.4g}, r = {:.6g} (K = {:.4g}, "
       "q = {:.4g}, {} unstable modes), ensemble of {}",
       sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution, sc.physics().K,
       sc.physics().q, sc.unstable_modes(), scene.ensemble);
+  if (!checkpointing.resume.empty()) {
+    const MemberCheckpoint& last_saved = checkpointing.resume.back();
+    log.info("md: resuming from the checkpoints: {} finished member(s){}",
+             checkpointing.resume.size() - (last_saved.finished ? 0 : 1),
+             last_saved.finished ? std::string()
+                                 : fmt::format(", member {} at t = {:.6g}",
+                                               checkpointing.resume.size(), last_saved.state.t));
+  }
   auto last = std::chrono::steady_clock::now();
-  const MdOutcome out = run_md_scene(scene, engine, [&](int member, const md::MdProgress& p) {
-    stop_if_interrupted();
-    const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
-    last = now;
-    const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
-    log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} atom-steps/s ETA {:.1f} s",
-             member + 1, scene.ensemble, p.t, p.T, p.steps,
-             p.steps * double(sc.particles) / std::max(p.wall_seconds, 1e-12),
-             p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
-  });
+  const MdOutcome out = run_md_scene(
+      scene, engine,
+      [&](int member, const md::MdProgress& p) {
+        stop_if_interrupted();
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
+        last = now;
+        const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
+        log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} atom-steps/s ETA {:.1f} s",
+                 member + 1, scene.ensemble, p.t, p.T, p.steps,
+                 p.steps * double(sc.particles) / std::max(p.wall_seconds, 1e-12),
+                 p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
+      },
+      &checkpointing);
   log.info("md: restitution {:.6f} (target {:.6f}), {}", out.collision_rule.restitution,
            sc.restitution, out.collision_rule.description);
   log.info(
@@ -81,6 +93,19 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       out.wall_seconds, out.cost.per_second(), out.cost.work_unit, out.haff.t0, out.haff.t0_error,
       out.haff_t0_theory, out.haff_t0_theory_dilute);
   return out;
+}
+
+// The particle files (particles*.h5) of a run whose frames were written beside its
+// checkpoints, hard-linked into the staging folder (the checkpoint keeps its own link until the
+// run is complete).
+void link_particle_files(const fs::path& from, const fs::path& to) {
+  for (const auto& entry : fs::directory_iterator(from)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("particles", 0) != 0 || entry.path().extension() != ".h5") continue;
+    std::error_code error;
+    fs::create_hard_link(entry.path(), to / name, error);
+    if (error) fs::copy_file(entry.path(), to / name, fs::copy_options::overwrite_existing);
+  }
 }
 
 // The continuum engine with a progress line every progress_seconds and its throughput.
@@ -224,6 +249,29 @@ int run_command(const RunOptions& options) {
     if (writer) std::cerr << "granvv: error: " << folder_error << "\n";
     return 2;
   }
+  // A resume continues the checkpoints of the same resolved case (every rank reads them).
+  std::vector<MemberCheckpoint> resume_from;
+  std::string resume_problem;
+  const std::optional<std::string> checkpointed = checkpointed_case(dir);
+  if (options.resume && checkpointed && md_scene) {
+    const std::string difference = checkpointed_case_difference(*checkpointed, config);
+    if (!difference.empty()) {
+      resume_problem = "cannot resume: the checkpoint in " + checkpoint_folder(dir).string() +
+                       " is of another case (" + difference +
+                       "); run without --resume to start anew";
+    } else {
+      try {
+        resume_from = load_member_checkpoints(dir, md_scene->ensemble);
+      } catch (const std::exception& e) {
+        resume_problem = std::string("cannot resume: ") + e.what() + "; remove " +
+                         checkpoint_folder(dir).string() + " to start anew";
+      }
+    }
+  }
+  if (!all_ranks_ok(ranks, resume_problem.empty())) {
+    if (writer) std::cerr << "granvv: error: " << resume_problem << "\n";
+    return 2;
+  }
   // One rank can stop at its own safe point; several must not (the others would wait in a
   // collective step), so under mpirun -np > 1 a signal keeps its default action.
   if (ranks.size == 1) catch_interruptions();
@@ -250,7 +298,8 @@ int run_command(const RunOptions& options) {
   if (writer) summary["run_id"] = folder->run_id();
   int exit_code = 0;
   bool interrupted = false;
-  std::optional<MdOutcome> md;  // kept when a later part fails
+  bool frames_in_checkpoints = false;  // the particle files are written beside the checkpoints
+  std::optional<MdOutcome> md;         // kept when a later part fails
   const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
   try {
     write_output(ranks, work / "case.toml",
@@ -261,11 +310,50 @@ int run_command(const RunOptions& options) {
       summary["md"] = {{"status", "failed"}};
       md_scene->spec.creator_version = GRANVV_VERSION;
       const auto engine = make_engine(*md_scene, writer ? work.string() : "");
+      // Checkpoints (app/md_checkpoint.hpp), the same choice on every rank; rank 0 writes them,
+      // and the particle files go with them until the particle part is done.
+      MdCheckpointing checkpointing;
+      checkpointing.resume = resume_from;
+      bool checkpoint_folder_ok = true;
+      if (md_scene->checkpoint_interval > 0.0) {
+        checkpointing.out_dir = dir;
+        checkpointing.interval_seconds = md_scene->checkpoint_interval;
+        checkpointing.stop_requested = [&] {
+          return checkpoint_folder_ok && interruption_signal() != 0;
+        };
+        checkpointing.warn = [&](const std::string& what) { log->warn("{}", what); };
+        if (writer && resume_from.empty()) {
+          if (checkpointed && !options.resume) {
+            log->warn(
+                "the checkpoint of an earlier run in {} is replaced (granvv run --resume "
+                "would have continued it)",
+                checkpoint_folder(dir).string());
+          }
+          try {
+            start_checkpoints(dir, config.resolved_toml());
+          } catch (const std::exception& e) {
+            log->warn("no checkpoints for this run: {}", e.what());
+            checkpoint_folder_ok = false;
+            checkpointing.interval_seconds = 0.0;
+          }
+        }
+      }
+      frames_in_checkpoints = checkpoint_folder_ok && !checkpointing.out_dir.empty() &&
+                              md_scene->spec.snapshot_interval > 0.0;
+      if (checkpoint_folder_ok && !checkpointing.out_dir.empty()) {
+        summary["checkpoint"] = {{"folder", checkpoint_folder(dir).string()},
+                                 {"resume", "granvv resume " + dir.string()}};
+      }
       summary["md"]["error"] =
           "the process ended inside the particle run (see " +
           fs::path(engine->log_path()).filename().string() +
           " and run.log); results.h5 holds what was finished before it and particles*.h5 the "
-          "particle frames written so far";
+          "particle frames written so far" +
+          std::string(frames_in_checkpoints ? " (in " + checkpoint_folder(dir).string() + ")"
+                                            : "") +
+          std::string(summary.contains("checkpoint") ? "; `granvv resume " + dir.string() +
+                                                           "` continues from the last checkpoint"
+                                                     : "");
       const nlohmann::json status_so_far = summary["status"];
       summary["status"] = "failed";
       write_output(ranks, work / "summary.json",
@@ -273,10 +361,12 @@ int run_command(const RunOptions& options) {
       if (writer) folder->commit_at_exit(true);
       summary["status"] = status_so_far;
       log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
+      const fs::path frames_dir = frames_in_checkpoints ? checkpoint_folder(dir) : work;
       if (md_scene->spec.snapshot_interval > 0.0) {
-        md_scene->spec.h5md_path = (work / "particles.h5").string();
+        md_scene->spec.h5md_path = (frames_dir / "particles.h5").string();
       }
-      MdOutcome particles = run_particles(*md_scene, *engine, scene.progress_seconds, *log);
+      MdOutcome particles =
+          run_particles(*md_scene, *engine, scene.progress_seconds, checkpointing, *log);
       if (writer) folder->commit_at_exit(false);
       return particles;
     };
@@ -387,7 +477,19 @@ int run_command(const RunOptions& options) {
   }
   if (!writer) return interrupted ? interrupted_exit_code() : exit_code;
   folder->commit_at_exit(false);
-  return finish_outputs(*folder, summary, *log, interrupted, options.report, exit_code);
+  if (frames_in_checkpoints) link_particle_files(checkpoint_folder(dir), work);
+  const bool checkpointed_run = summary.contains("checkpoint");
+  if (checkpointed_run && (interrupted || exit_code != 0)) {
+    log->info("the checkpoint is kept in {}; `granvv resume {}` continues the run",
+              checkpoint_folder(dir).string(), dir.string());
+  } else {
+    summary.erase("checkpoint");  // removed once the outputs are in place
+  }
+  const int finished =
+      finish_outputs(*folder, summary, *log, interrupted, options.report, exit_code);
+  // A complete result no longer needs its checkpoints.
+  if (checkpointed_run && finished == 0 && !interrupted) remove_checkpoints(dir);
+  return finished;
 }
 
 }  // namespace granvv::app

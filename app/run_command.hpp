@@ -11,6 +11,9 @@ struct RunOptions {
   bool dry_run = false;
   bool quiet = false;
   bool report = true;
+  // Continue the checkpoints in the output folder (app/md_checkpoint.hpp) if they are of this
+  // resolved case (exit 2 if they are of another); without any, start from t = 0.
+  bool resume = false;
 };
 
 // `granvv run`: exit 0 for a finished run (status ok or singularity), 1 if the run failed,

@@ -74,4 +74,10 @@ std::string read_string_attribute(const H5::H5Object& o, const std::string& name
   return value;
 }
 
+double read_double_attribute(const H5::H5Object& o, const std::string& name) {
+  double value = 0.0;
+  o.openAttribute(name).read(H5::PredType::NATIVE_DOUBLE, &value);
+  return value;
+}
+
 }  // namespace granvv::h5

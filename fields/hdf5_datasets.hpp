@@ -24,5 +24,6 @@ struct DoubleArray {
 DoubleArray read_doubles(const H5::Group& g, const std::string& name);
 std::vector<std::string> read_strings(const H5::Group& g, const std::string& name);
 std::string read_string_attribute(const H5::H5Object& o, const std::string& name);
+double read_double_attribute(const H5::H5Object& o, const std::string& name);
 
 }  // namespace granvv::h5

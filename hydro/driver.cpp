@@ -94,6 +94,13 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
       limit.limited_by = "output time";
     }
 
+    if (!(s.t + dt > s.t)) {  // a step below the clock's round-off would never end the run
+      result.status = RunStatus::failed;
+      result.stop_reason = "the time step dt = " + std::to_string(dt) + " (limited by " +
+                           limit.limited_by + ") no longer advances t = " + std::to_string(s.t) +
+                           " in double precision";
+      break;
+    }
     StepOutcome step;
     for (int attempt = 0; attempt < 30; ++attempt) {
       step = integrator.step(s, dt, cells);

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
 #include <utility>
+
+#include "md_bridge/particle_scene.hpp"
 
 namespace granvv::md {
 namespace {
@@ -242,6 +245,85 @@ H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double bo
   }
 }
 
+namespace {
+
+// Rows of an element's step dataset, as written (int64).
+std::vector<std::int64_t> read_steps(const H5::Group& element) {
+  const H5::DataSet ds = element.openDataSet("step");
+  hsize_t rows = 0;
+  ds.getSpace().getSimpleExtentDims(&rows);
+  std::vector<std::int64_t> steps(rows);
+  if (rows > 0) ds.read(steps.data(), H5::PredType::NATIVE_INT64);
+  return steps;
+}
+
+std::vector<double> read_column(const H5::Group& element, const std::string& name) {
+  const H5::DataSet ds = element.openDataSet(name);
+  hsize_t rows = 0;
+  ds.getSpace().getSimpleExtentDims(&rows);
+  std::vector<double> values(rows);
+  if (rows > 0) ds.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return values;
+}
+
+// Row `row` of a [frames][N][2] value dataset, as xyz triplets with z = 0.
+std::vector<double> read_frame(const H5::DataSet& value, hsize_t row, hsize_t n) {
+  std::vector<double> xy(2 * n), xyz(3 * n, 0.0);
+  const hsize_t start[3] = {row, 0, 0}, count[3] = {1, n, 2};
+  H5::DataSpace file_space = value.getSpace();
+  file_space.selectHyperslab(H5S_SELECT_SET, count, start);
+  const H5::DataSpace memory_space(3, count);
+  value.read(xy.data(), H5::PredType::NATIVE_DOUBLE, memory_space, file_space);
+  for (hsize_t i = 0; i < n; ++i) xyz[3 * i] = xy[2 * i], xyz[3 * i + 1] = xy[2 * i + 1];
+  return xyz;
+}
+
+}  // namespace
+
+H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_step,
+                                     long long n_particles, double box_length, double box_width,
+                                     const std::string& creator_version) {
+  const std::string before = path + ".before-resume";
+  if (std::rename(path.c_str(), before.c_str()) != 0)
+    throw std::runtime_error("H5MD file " + path + ": cannot continue it (missing or not movable)");
+  H5::Exception::dontPrint();
+  try {
+    H5::FileAccPropList access;
+    if (H5Pset_file_locking(access.getId(), false, true) < 0)
+      throw std::runtime_error("cannot disable file locking");
+    const H5::H5File old(before, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, access);
+    H5mdWriter writer(path, n_particles, box_length, box_width, creator_version);
+    const H5::Group position = old.openGroup("particles/all/position");
+    const H5::Group velocity = old.openGroup("particles/all/velocity");
+    const H5::DataSet x = position.openDataSet("value"), v = velocity.openDataSet("value");
+    const std::vector<std::int64_t> steps = read_steps(position);
+    const std::vector<double> times = read_column(position, "time");
+    for (std::size_t row = 0; row < steps.size() && steps[row] <= last_step; ++row) {
+      writer.append_particles(steps[row], times[row], read_frame(x, row, n_particles),
+                              read_frame(v, row, n_particles));
+    }
+    const H5::Group observables = old.openGroup("observables");
+    for (hsize_t k = 0; k < observables.getNumObjs(); ++k) {
+      const std::string name = observables.getObjnameByIdx(k);
+      const H5::Group element = observables.openGroup(name);
+      const std::vector<std::int64_t> obs_steps = read_steps(element);
+      const std::vector<double> obs_times = read_column(element, "time");
+      const std::vector<double> values = read_column(element, "value");
+      for (std::size_t row = 0; row < obs_steps.size() && obs_steps[row] <= last_step; ++row) {
+        writer.append_observable(name, obs_steps[row], obs_times[row], values[row]);
+      }
+    }
+    std::remove(before.c_str());
+    return writer;
+  } catch (const H5::Exception& e) {
+    std::rename(before.c_str(), path.c_str());
+    throw std::runtime_error("H5MD file " + path + ": cannot continue it: " + e.getDetailMsg());
+  } catch (const std::exception& e) {
+    std::rename(before.c_str(), path.c_str());
+    throw std::runtime_error("H5MD file " + path + ": cannot continue it: " + e.what());
+  }
+}
+
 H5mdWriter::~H5mdWriter() {
   try {
     close();
@@ -358,15 +440,7 @@ long long H5mdWriter::observable_frames(const std::string& name) const {
 }
 
 double H5mdWriter::wrap(double x, double length) {
-  if (!std::isfinite(x)) return x;
-  const double half = 0.5 * length;
-  if (x >= -half && x < half) return x;
-  double y = x - length * std::floor((x + half) / length);
-  // Rounding can land exactly on the upper edge (x just below an image of -L/2) or a hair
-  // below the lower one.
-  if (y >= half) y -= length;
-  if (y < -half) y = -half;
-  return y;
+  return periodic_image(x, length);
 }
 
 }  // namespace granvv::md

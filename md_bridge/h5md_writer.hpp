@@ -61,6 +61,15 @@ class H5mdWriter {
   // (or "unknown"): H5MD makes /h5md/author/name mandatory.
   H5mdWriter(const std::string& path, long long n_particles, double box_length, double box_width,
              const std::string& creator_version, const std::string& author = "");
+  // Continues the file a run wrote before it was stopped (a resumed run, docs/outputs.md
+  // "Checkpoints and resume"): the file at `path` is made anew with the frames of the old one
+  // whose step is at most last_step, particles and observables alike; frames written after the
+  // checkpoint at last_step are dropped. Throws std::runtime_error if the old file cannot be
+  // read (it is then left as it was).
+  static H5mdWriter continue_file(const std::string& path, long long last_step,
+                                  long long n_particles, double box_length, double box_width,
+                                  const std::string& creator_version);
+
   ~H5mdWriter();  // closes the file; never throws
   H5mdWriter(H5mdWriter&&) noexcept;
   H5mdWriter& operator=(H5mdWriter&&) noexcept;
@@ -85,7 +94,7 @@ class H5mdWriter {
   long long particle_frames() const;
   long long observable_frames(const std::string& name) const;  // 0 for an unknown name
 
-  // x modulo length, into [-length/2, length/2); non-finite x is returned unchanged.
+  // x modulo length, into [-length/2, length/2) (periodic_image, particle_scene.hpp).
   static double wrap(double x, double length);
 
  private:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -79,22 +80,88 @@ CollisionRuleCheck LammpsEngine::check_collision_rule() {
   return {m.restitution, what.str()};
 }
 
-void LammpsEngine::set_up(const ParticleSample& sample) {
-  if (runs_ == 1) first_final_ = contact_;
+void LammpsEngine::open_session(const ParticleSample& sample) {
   lmp_.reset();  // one LAMMPS instance at a time
-  speed_ = fastest_relative_speed(sample.v.data(), int(sample.count()), MPI_COMM_SELF);
-  contact_ = contact_for_speed(std::max(speed_, 1e-12));
   LammpsSessionOptions session;
   session.log_file = options_.log_file;
   session.comm = options_.comm;
   lmp_ = std::make_unique<LammpsSession>(std::move(session));
   set_up_disk_gas(*lmp_, options_.box_length, options_.box_width, sample, contact_);
+  pre_ = true;
+}
+
+void LammpsEngine::set_up(const ParticleSample& sample) {
+  if (runs_ == 1) {
+    first_final_ = contact_;
+    first_final_speed_ = speed_;
+  }
+  speed_ =
+      std::max(fastest_relative_speed(sample.v.data(), int(sample.count()), MPI_COMM_SELF), 1e-12);
+  contact_ = contact_for_speed(speed_);
+  open_session(sample);
   t_ = 0.0;
   steps_ = 0;
   changes_ = 0;
-  pre_ = true;
-  if (runs_ == 0) first_initial_ = contact_;
+  if (runs_ == 0) {
+    first_initial_ = contact_;
+    first_initial_speed_ = speed_;
+  }
   ++runs_;
+}
+
+EngineState LammpsEngine::save_state() {
+  EngineState state;
+  if (lmp_) state.particles = gather_frame();
+  state.numbers = {{"t", t_},
+                   {"steps", double(steps_)},
+                   {"speed", speed_},
+                   {"changes", double(changes_)},
+                   {"runs", double(runs_)},
+                   {"atom_steps", atom_steps_},
+                   {"all_changes", double(all_changes_)},
+                   {"first_initial_speed", first_initial_speed_},
+                   {"first_final_speed", runs_ > 1 ? first_final_speed_ : speed_},
+                   {"wall_seconds", cost().wall_seconds}};
+  return state;
+}
+
+void LammpsEngine::restore_state(const EngineState& state) {
+  std::map<std::string, double> number;
+  for (const auto& [name, value] : state.numbers) number[name] = value;
+  const auto get = [&](const std::string& name) {
+    const auto found = number.find(name);
+    if (found == number.end() || !std::isfinite(found->second))
+      throw std::invalid_argument("LAMMPS engine state without a finite '" + name + "'");
+    return found->second;
+  };
+  t_ = get("t");
+  steps_ = std::llround(get("steps"));
+  speed_ = get("speed");
+  changes_ = int(std::lround(get("changes")));
+  runs_ = int(std::lround(get("runs")));
+  atom_steps_ = get("atom_steps");
+  all_changes_ = int(std::lround(get("all_changes")));
+  first_initial_speed_ = get("first_initial_speed");
+  first_final_speed_ = get("first_final_speed");
+  wall_before_ = get("wall_seconds");
+  made_ = std::chrono::steady_clock::now();
+  contact_ = contact_for_speed(speed_);
+  if (runs_ > 0) first_initial_ = contact_for_speed(first_initial_speed_);
+  if (runs_ > 1) first_final_ = contact_for_speed(first_final_speed_);
+  lmp_.reset();
+  const auto& p = state.particles;
+  if (p.x.empty()) return;  // between runs: the next set_up starts one
+  if (p.x.size() != 3 * std::size_t(options_.particles) || p.v.size() != p.x.size())
+    throw std::invalid_argument("LAMMPS engine state with " + std::to_string(p.x.size() / 3) +
+                                " particles for a scene of " + std::to_string(options_.particles));
+  // Saved positions may lie up to half the neighbour skin outside the periodic box (LAMMPS maps
+  // atoms back only when it rebuilds its lists); their images inside it are the same state.
+  ParticleSample sample{p.x, p.v};
+  const double edge[2] = {options_.box_length, options_.box_width};
+  for (std::size_t i = 0; i < sample.x.size(); i += 3) {
+    for (int d = 0; d < 2; ++d) sample.x[i + d] = periodic_image(sample.x[i + d], edge[d]);
+  }
+  open_session(sample);
 }
 
 double LammpsEngine::advance_to(double t) {
@@ -145,7 +212,7 @@ EngineValues LammpsEngine::series_values() const {
 EngineCost LammpsEngine::cost() const {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - made_).count();
-  return {wall, atom_steps_, "atom_steps"};
+  return {wall_before_ + wall, atom_steps_, "atom_steps"};
 }
 
 EngineDetails LammpsEngine::details() const {

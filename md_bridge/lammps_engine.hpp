@@ -62,6 +62,11 @@ class LammpsEngine final : public ParticleEngine {
   ParticleFrame gather_frame() override;
   // kn and dt of the contact in use.
   EngineValues series_values() const override;
+  // Numbers: t, steps, speed (the contact's), changes (this run's); runs, atom_steps,
+  // all_changes, first_initial_speed, first_final_speed, wall_seconds (the totals). The contacts
+  // are made again from their speeds (contact_for_speed is deterministic).
+  EngineState save_state() override;
+  void restore_state(const EngineState& state) override;
   EngineCost cost() const override;
   // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of
   // the first run).
@@ -78,6 +83,7 @@ class LammpsEngine final : public ParticleEngine {
   LammpsEngineOptions options_;
   std::chrono::steady_clock::time_point made_;
   std::unique_ptr<LammpsSession> lmp_;
+  void open_session(const ParticleSample& sample);
   ContactModel contact_;
   double speed_ = 0.0;  // relative speed the contact was made for
   double t_ = 0.0;
@@ -89,6 +95,8 @@ class LammpsEngine final : public ParticleEngine {
   double atom_steps_ = 0.0;
   int all_changes_ = 0;
   ContactModel first_initial_, first_final_;
+  double first_initial_speed_ = 0.0, first_final_speed_ = 0.0;
+  double wall_before_ = 0.0;  // wall seconds of the processes that ran before a restore
 };
 
 }  // namespace granvv::md

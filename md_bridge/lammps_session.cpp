@@ -45,7 +45,12 @@ LammpsSession::LammpsSession(LammpsSessionOptions options)
   MPI_Comm_size(comm_, &size_);
   if (options.log_file.empty())
     throw std::invalid_argument("LAMMPS log file: empty path (use \"none\" for no log)");
-  if (options.log_file != "none" && !log_file_writable(options.log_file, comm_, rank_))
+  // Only rank 0 writes the log, so its choice decides, and the probe is made on every rank
+  // (other ranks may be given "none": a collective made on some ranks only would be matched
+  // by the next one the others make).
+  int wants_log = options.log_file != "none" ? 1 : 0;
+  MPI_Bcast(&wants_log, 1, MPI_INT, 0, comm_);
+  if (wants_log && !log_file_writable(options.log_file, comm_, rank_))
     throw std::invalid_argument("LAMMPS log file '" + options.log_file +
                                 "' cannot be opened for writing");
   std::vector<std::string> args = {"granvv",  "-log", options.log_file,

@@ -15,11 +15,31 @@
 
 namespace granvv::md {
 
+const std::vector<MdSeriesColumn>& md_series_columns() {
+  static const std::vector<MdSeriesColumn> columns{
+      {"t", &MdSeries::t},
+      {"T", &MdSeries::T},
+      {"energy_thermal", &MdSeries::energy_thermal},
+      {"energy_kinetic_x", &MdSeries::energy_kinetic_x},
+      {"energy_kinetic_y", &MdSeries::energy_kinetic_y},
+      {"energy_total", &MdSeries::energy_total},
+      {"kinetic_noise_x", &MdSeries::kinetic_noise_x},
+      {"kinetic_noise_y", &MdSeries::kinetic_noise_y},
+      {"momentum_x", &MdSeries::momentum_x},
+      {"momentum_y", &MdSeries::momentum_y}};
+  return columns;
+}
+
 MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
-                   const std::function<void(const MdProgress&)>& progress) {
+                   const std::function<void(const MdProgress&)>& progress,
+                   const MdCheckpoints& checkpoints) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+  const MdRunState* resume = checkpoints.resume_from;
+  const double wall_before = resume ? resume->so_far.wall_seconds : 0.0;
+  auto wall = [&] {
+    return wall_before + std::chrono::duration<double>(clock::now() - start).count();
+  };
   const std::string problem = scene_problem(spec.scene);
   if (!problem.empty()) throw std::invalid_argument(problem);
   if (!(spec.t_end > 0.0) || !(spec.sample_interval > 0.0)) {
@@ -28,23 +48,34 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
 
   MpiEnvironment::ensure();
   const ParticleScene& scene = spec.scene;
-  const ParticleSample sample = sample_particles(scene, spec.fields, spec.seed);
   const double lx = scene.box_length, ly = scene.box_width;
   CoarseGrainer grainer({-0.5 * lx, lx, -0.5 * ly, ly, spec.bins, spec.kernel, spec.kernel_width});
 
   MdRunResult result;
-  result.fields = fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins);
-  engine.set_up(sample);
+  double t = 0.0;
+  size_t next_output = 0;
+  double next_frame = 0.0;
+  if (resume) {
+    engine.restore_state(resume->engine);
+    result = resume->so_far;
+    t = resume->t;
+    next_output = resume->next_output;
+    next_frame = resume->next_frame;
+  } else {
+    result.fields = fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins);
+    engine.set_up(sample_particles(scene, spec.fields, spec.seed));
+  }
   int rank = 0;
   MPI_Comm_rank(engine.comm(), &rank);
 
   // Particle output in H5MD layout (rank 0 writes; gathering is collective).
   std::unique_ptr<H5mdWriter> h5md;
   if (!spec.h5md_path.empty() && rank == 0) {
-    h5md =
-        std::make_unique<H5mdWriter>(spec.h5md_path, scene.particles, lx, ly, spec.creator_version);
+    h5md = std::make_unique<H5mdWriter>(
+        resume ? H5mdWriter::continue_file(spec.h5md_path, result.steps, scene.particles, lx, ly,
+                                           spec.creator_version)
+               : H5mdWriter(spec.h5md_path, scene.particles, lx, ly, spec.creator_version));
   }
-  double next_frame = 0.0;
   auto write_frame = [&](double time) {
     if (spec.snapshot_interval <= 0.0 || spec.h5md_path.empty()) return;
     if (time < next_frame - 0.5 * engine.time_resolution()) return;
@@ -53,8 +84,6 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     next_frame += spec.snapshot_interval;
   };
 
-  double t = 0.0;
-  size_t next_output = 0;
   auto observe = [&](bool snapshot) {
     const LocalParticles p = engine.local_particles();
     Moments m = grainer.accumulate(p.x, p.v, p.mass, p.count);
@@ -91,8 +120,26 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     write_frame(t);
   };
   const auto& outputs = spec.output_times;
-  while (next_output < outputs.size() && outputs[next_output] <= 0.0) ++next_output;
-  observe(!outputs.empty() && outputs.front() <= 0.0);
+  if (!resume) {
+    while (next_output < outputs.size() && outputs[next_output] <= 0.0) ++next_output;
+    observe(!outputs.empty() && outputs.front() <= 0.0);
+  }
+  // The decision is rank 0's, so that every rank saves at the same sample.
+  auto checkpoint_if_due = [&] {
+    if (!checkpoints.save) return;
+    int due = (rank == 0 && checkpoints.due && checkpoints.due()) ? 1 : 0;
+    MPI_Bcast(&due, 1, MPI_INT, 0, engine.comm());
+    if (!due) return;
+    MdRunState state;
+    state.t = t;
+    state.next_output = next_output;
+    state.next_frame = next_frame;
+    state.engine = engine.save_state();
+    state.so_far = result;
+    state.so_far.status = "running";
+    state.so_far.wall_seconds = wall();
+    if (rank == 0) checkpoints.save(state);
+  };
 
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
@@ -108,9 +155,17 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     t = engine.advance_to(target);
     result.steps = engine.steps();
     if (snapshot) ++next_output;
+    // A snapshot time passed without its snapshot: two output times within one engine step.
+    if (next_output < outputs.size() && outputs[next_output] < t - 0.5 * engine.time_resolution()) {
+      throw std::runtime_error(
+          "md.output_times: the snapshot at t = " + std::to_string(outputs[next_output]) +
+          " lies within one engine step of the previous one (the step is " +
+          std::to_string(engine.time_resolution()) + ")");
+    }
     observe(snapshot);
-    if (progress) progress({t, spec.t_end, result.series.T.back(), wall(), result.steps});
     engine.between_segments();
+    checkpoint_if_due();
+    if (progress) progress({t, spec.t_end, result.series.T.back(), wall(), result.steps});
   }
   result.status = "ok";
   result.stop_reason = "end time reached";

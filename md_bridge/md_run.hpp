@@ -45,6 +45,14 @@ struct MdSeries {
   std::vector<std::pair<std::string, std::vector<double>>> engine;
 };
 
+// The per-sample columns of MdSeries by name, t first: what every writer and reader of a
+// series loops over.
+struct MdSeriesColumn {
+  const char* name;
+  std::vector<double> MdSeries::*values;
+};
+const std::vector<MdSeriesColumn>& md_series_columns();
+
 struct MdProgress {
   double t, t_end, T, wall_seconds;
   long long steps;
@@ -61,10 +69,33 @@ struct MdRunResult {
   fields::FieldSeries fields;
 };
 
-// One run of `engine` (which starts it anew). Validates the spec (scene_problem, times) and
-// throws std::invalid_argument before the engine sees it. Deterministic for a seed (and a
-// number of ranks) if the engine is.
+// Everything a run needs to continue from a safe point (just after a sample): the engine's
+// state, where the loop stood, and what the run has recorded so far (status "running").
+struct MdRunState {
+  double t = 0.0;
+  std::size_t next_output = 0;  // index into MdRunSpec::output_times
+  double next_frame = 0.0;      // time of the next H5MD particle frame
+  EngineState engine;
+  MdRunResult so_far;
+};
+
+// Checkpoints of a run (docs/outputs.md, "Checkpoints and resume"). After every sample rank 0
+// asks due(); if it says yes, every rank saves the state and rank 0 hands it to save().
+struct MdCheckpoints {
+  std::function<bool()> due;
+  std::function<void(const MdRunState&)> save;
+  // Continue from this state instead of starting anew (the H5MD file, if any, is cut back to
+  // the state's step).
+  const MdRunState* resume_from = nullptr;
+};
+
+// One run of `engine` (which starts it anew, or continues checkpoints.resume_from). Validates
+// the spec (scene_problem, times) and throws std::invalid_argument before the engine sees it.
+// Deterministic for a seed (and a number of ranks) if the engine is; a resumed run has the
+// same statistics as an uninterrupted one, not the same digits (the engine's summation order
+// differs after a restart, and the dynamics is chaotic).
 MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
-                   const std::function<void(const MdProgress&)>& progress);
+                   const std::function<void(const MdProgress&)>& progress,
+                   const MdCheckpoints& checkpoints = {});
 
 }  // namespace granvv::md

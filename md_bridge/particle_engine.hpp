@@ -67,6 +67,15 @@ using EngineDetails = std::vector<EngineDetail>;
 // written beside it (results.h5 /md/timeseries/<name>).
 using EngineValues = std::vector<std::pair<std::string, double>>;
 
+// What an engine needs to continue a run where it was saved (a checkpoint, docs/outputs.md
+// "Checkpoints and resume"): every particle by ID, and the engine's own numbers by name (its
+// clock, step count, collision-rule state and its totals over the runs so far). Without
+// particles it holds the totals only: the state between two runs.
+struct EngineState {
+  ParticleFrame particles;
+  EngineValues numbers;
+};
+
 // One engine serves every member of an ensemble: set_up starts a new run.
 class ParticleEngine {
  public:
@@ -100,6 +109,13 @@ class ParticleEngine {
   virtual ParticleFrame gather_frame() = 0;
   // Engine-specific numbers of the current state, taken at every time-series sample.
   virtual EngineValues series_values() const { return {}; }
+
+  // The state now (collective; the same on every rank): after set_up and any advance_to, or
+  // with no particles between runs.
+  virtual EngineState save_state() = 0;
+  // Continues from a saved state (collective): the run in progress with its particles, or only
+  // the totals. Throws std::invalid_argument for a state this engine did not save.
+  virtual void restore_state(const EngineState& state) = 0;
 
   virtual EngineCost cost() const = 0;
   virtual EngineDetails details() const { return {}; }

@@ -78,4 +78,16 @@ std::string scene_problem(const ParticleScene& s) {
   return why.str();
 }
 
+double periodic_image(double x, double length) {
+  if (!std::isfinite(x)) return x;
+  const double half = 0.5 * length;
+  if (x >= -half && x < half) return x;
+  double y = x - length * std::floor((x + half) / length);
+  // Rounding can land exactly on the upper edge (x just below an image of -L/2) or a hair
+  // below the lower one.
+  if (y >= half) y -= length;
+  if (y < -half) y = -half;
+  return y;
+}
+
 }  // namespace granvv::md

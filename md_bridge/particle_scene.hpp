@@ -30,6 +30,10 @@ struct ParticleScene {
   double scaled_position(double md_x) const { return md_x / box_length; }
 };
 
+// x modulo length, into the box [-length/2, length/2) of every particle scene; non-finite x is
+// returned unchanged.
+double periodic_image(double x, double length);
+
 // From the paper's terms: K, q, area fraction phi, box width Ly (sigma). N is rounded to the
 // nearest integer and Lx adjusted so that phi is kept exactly.
 ParticleScene scene_from_scaled(double K, double q, double area_fraction, double box_width);

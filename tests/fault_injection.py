@@ -38,6 +38,9 @@ MD = ["md_haff", "--set", "md.particles=400", "--set", "md.box_width=80", "--set
       "--set", "md.sample_interval=1.0", "--set", "md.snapshot_interval=1.0", "--quiet", "--no-report"]
 MD_QUICK = MD + ["--set", "md.t_end=4", "--set", "md.output_times=[0.0,4.0]"]
 MD_SLOW = MD + ["--set", "md.t_end=4000", "--set", "md.output_times=[0.0,4000.0]"]
+# Two members of a few seconds each, checkpointed every 0.3 s of wall time.
+MD_RESUMABLE = MD + ["--set", "md.ensemble=2", "--set", "md.t_end=30",
+                     "--set", "md.output_times=[0.0,15.0,30.0]", "--set", "md.checkpoint_interval=0.3"]
 # Long enough for any run of this file on a loaded machine; a hang fails the test instead.
 TIMEOUT = 300
 
@@ -68,6 +71,12 @@ def wait_for(predicate, seconds=60.0):
             return True
         time.sleep(0.05)
     return False
+
+
+def frames_started(d):
+    """The particle run in d has written its first H5MD frame (beside its checkpoints)."""
+    folder = Path(d) / ".granvv-checkpoint"
+    return folder.is_dir() and any(folder.glob("particles*.h5"))
 
 
 def is_root():
@@ -114,6 +123,15 @@ class FolderState(unittest.TestCase):
         leftovers = [p.name for p in Path(d).iterdir() if p.name.endswith(".partial")]
         self.assertEqual(leftovers, [])
         return s
+
+    def stop_particle_run(self, args, d, sig, after):
+        """Starts a particle run into d and stops it with sig `after` seconds into its frames."""
+        p = start(args + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: frames_started(d)))
+        time.sleep(after)
+        p.send_signal(sig)
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + sig, err)
 
     def assert_one_error_line(self, stderr):
         lines = [l for l in stderr.splitlines() if l.strip()]
@@ -189,13 +207,7 @@ class Signals(FolderState):
     def test_sigterm_during_a_particle_run_keeps_the_previous_result(self):
         d = self.tmp / "out"
         previous = self.good_run(d, MD_QUICK)
-        p = start(MD_SLOW + ["--out", str(d)])
-        self.assertTrue(wait_for(lambda: any((q / "particles.h5").exists() for q in d.iterdir()
-                                             if q.name.startswith(".granvv-staging"))))
-        time.sleep(1.0)
-        p.send_signal(signal.SIGTERM)
-        _, err = p.communicate(timeout=TIMEOUT)
-        self.assertEqual(p.returncode, 128 + signal.SIGTERM, err)
+        self.stop_particle_run(MD_SLOW, d, signal.SIGTERM, 1.0)
         s = self.assert_consistent(d, "ok")
         self.assertEqual(s["run_id"], previous)
         stopped = summary(d / "interrupted-run")
@@ -208,8 +220,7 @@ class Signals(FolderState):
         d = self.tmp / "out"
         previous = self.good_run(d, MD_QUICK)
         p = start(MD_SLOW + ["--out", str(d)])
-        self.assertTrue(wait_for(lambda: any((q / "particles.h5").exists() for q in d.iterdir()
-                                             if q.name.startswith(".granvv-staging"))))
+        self.assertTrue(wait_for(lambda: frames_started(d)))
         p.kill()
         p.communicate(timeout=TIMEOUT)
         s = self.assert_consistent(d, "ok")
@@ -439,6 +450,90 @@ class Sweeps(FolderState):
         p.communicate(timeout=TIMEOUT)
         sw = json.loads((d / "sweep.json").read_text())
         self.assertEqual(sw["status"], "incomplete")
+
+
+class Resume(FolderState):
+    """Checkpoints of particle runs and `granvv resume` (docs/outputs.md, "Checkpoints and resume")."""
+
+    def members(self, d, name):
+        with h5py.File(Path(d) / "results.h5", "r") as f:
+            return f["md/timeseries/" + name][()]
+
+    def resume(self, d):
+        return subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
+                              capture_output=True, text=True, timeout=TIMEOUT)
+
+    def test_a_particle_run_killed_midway_resumes_with_the_statistics_of_an_uninterrupted_one(self):
+        whole = self.tmp / "whole"
+        r = run(MD_RESUMABLE + ["--out", str(whole)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertFalse((whole / ".granvv-checkpoint").exists())  # removed once complete
+        d = self.tmp / "killed"
+        p = start(MD_RESUMABLE + ["--out", str(d)])
+        # Member 0 finished and member 1 has saved a state of its own.
+        self.assertTrue(wait_for(lambda: (d / ".granvv-checkpoint" / "member_1.h5").exists(), 120))
+        p.kill()
+        p.communicate(timeout=TIMEOUT)
+        self.assertFalse((d / "summary.json").exists())
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = self.assert_consistent(d, "ok")
+        c = s["md"]["checkpoints"]
+        self.assertTrue(c["resumed"])
+        self.assertEqual(c["members_restored"], 1)
+        self.assertEqual(c["resumed_member"], 1)
+        self.assertGreater(c["resumed_t"], 0.0)
+        self.assertNotIn("checkpoint", s)
+        self.assertFalse((d / ".granvv-checkpoint").exists())
+        # Member 0 is the saved result, bit for bit. Member 1 continued from its state: before it
+        # the same samples, after it the same run up to the O(dt) change of the contacts open at
+        # the restart (tests/test_md_run.cpp, ARunContinuedFromItsCheckpoint...): 1e-4 of T.
+        for name in ("T", "energy_total"):
+            a, b = self.members(whole, name), self.members(d, name)
+            self.assertEqual(a.shape, b.shape)
+            self.assertTrue((a[0] == b[0]).all(), name)
+            self.assertLess(abs(b[1] / a[1] - 1).max(), 1e-4, name)
+        self.assertAlmostEqual(s["md"]["haff_t0_measured"] / summary(whole)["md"]["haff_t0_measured"],
+                               1.0, delta=1e-4)
+        # The particle frames of the resumed member: the same steps as the uninterrupted ones.
+        for f in ("particles_m0.h5", "particles_m1.h5"):
+            with h5py.File(whole / f, "r") as a, h5py.File(d / f, "r") as b:
+                self.assertEqual(list(a["particles/all/position/step"][()]),
+                                 list(b["particles/all/position/step"][()]), f)
+                self.assertEqual(list(a["observables/thermal_energy/step"][()]),
+                                 list(b["observables/thermal_energy/step"][()]), f)
+
+    def test_sigint_saves_a_checkpoint_and_resume_continues_from_it(self):
+        d = self.tmp / "out"
+        # No timed checkpoint in this run: the one it leaves is the signal's.
+        args = MD_RESUMABLE + ["--set", "md.checkpoint_interval=1000"]
+        self.stop_particle_run(args, d, signal.SIGINT, 0.5)
+        stopped = summary(d / "interrupted-run")
+        self.assertEqual(stopped["status"], "interrupted")
+        self.assertIn("granvv resume", stopped["checkpoint"]["resume"])
+        self.assertTrue((d / ".granvv-checkpoint" / "member_0.h5").exists())
+        # A resume of another case is refused, and the checkpoint stays.
+        r = run(args + ["--set", "md.seed=5", "--resume", "--out", str(d)])
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("md.seed", r.stderr)
+        self.assertTrue((d / ".granvv-checkpoint" / "member_0.h5").exists())
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = self.assert_consistent(d, "ok")
+        self.assertEqual(s["md"]["checkpoints"]["resumed_member"], 0)
+        self.assertGreater(s["md"]["checkpoints"]["resumed_t"], 0.0)
+        self.assertEqual(self.members(d, "T").shape[0], 2)
+
+    def test_resume_without_a_checkpoint(self):
+        r = self.resume(self.tmp / "nothing")
+        self.assertEqual(r.returncode, 2)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("no checkpoint", r.stderr)
+        d = self.tmp / "fresh"  # `run --resume` with nothing to resume starts from t = 0
+        r = run(MD_QUICK + ["--resume", "--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertFalse(summary(d)["md"]["checkpoints"]["resumed"])
 
 
 if __name__ == "__main__":

@@ -287,6 +287,27 @@ TEST_F(H5mdWriterTest, KilledWriterLeavesEveryAppendedFrame) {
   expect_frames(file, 2);
 }
 
+// A resumed run continues its file from the checkpoint's step: the frames written after it are
+// dropped, the ones before kept bit for bit, and appending goes on from there.
+TEST_F(H5mdWriterTest, ContinuedFileKeepsTheFramesUpToTheCheckpointAndAppendsAfterThem) {
+  const auto path = file("resumed.h5");
+  {
+    H5mdWriter writer(path, kN, kLx, kLy, "test");
+    write_frames(writer, 0, 5);  // frames 3 and 4 came after the checkpoint at frame 2
+  }
+  {
+    H5mdWriter writer = H5mdWriter::continue_file(path, step_of(2), kN, kLx, kLy, "test");
+    EXPECT_EQ(writer.particle_frames(), 3);
+    EXPECT_EQ(writer.observable_frames("total_energy"), 3);
+    write_frames(writer, 3, 5);
+  }
+  H5::H5File file(path, H5F_ACC_RDONLY);
+  expect_frames(file, 5);
+  EXPECT_FALSE(std::filesystem::exists(path + ".before-resume"));
+  EXPECT_THROW(H5mdWriter::continue_file(this->file("absent.h5"), 0, kN, kLx, kLy, "test"),
+               std::runtime_error);
+}
+
 TEST_F(H5mdWriterTest, ExtraObservablesAreCreatedOnFirstUse) {
   const auto path = file("obs.h5");
   {

@@ -79,5 +79,18 @@ TEST(HydroConservation, RunRefusesAControlWithoutTimeStepBounds) {
   EXPECT_THROW(run_hydro(DiluteClosure({4e-4, 0.01}), state, control), std::invalid_argument);
 }
 
+// A time step below the round-off of the clock (dt < t eps) would leave t unchanged forever: the
+// run stops as failed with the reason instead of looping.
+TEST(HydroConservation, AStepThatCannotAdvanceTheClockFailsTheRun) {
+  auto state = discretize(uniform_fields(), 16, 0.5, false);
+  state.t = 1e17;  // eps t = 22 > dt_max
+  RunControl control = testing::run_control(2e17);
+  control.time_step.dt_max = 1.0;
+  const RunResult r = run_hydro(DiluteClosure({4e-4, 0.01}), state, control);
+  EXPECT_EQ(r.status, RunStatus::failed);
+  EXPECT_NE(r.stop_reason.find("no longer advances"), std::string::npos) << r.stop_reason;
+  EXPECT_EQ(r.steps, 0);
+}
+
 }  // namespace
 }  // namespace granvv::hydro
