@@ -16,6 +16,7 @@
 #include "app/hydro_scene.hpp"
 #include "app/interruption.hpp"
 #include "app/json_numbers.hpp"
+#include "app/md_checkpoint.hpp"
 #include "app/md_scene.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
@@ -270,9 +271,18 @@ int sweep_command(const SweepOptions& options) {
       run.quiet = options.quiet;
       run.report = options.report;
       const bool reused = point_is_complete(run.out_dir, resolved[i]);
+      // A point stopped midway continues from its checkpoints if they are of this very case.
+      const std::optional<std::string> checkpointed = checkpointed_case(run.out_dir);
+      run.resume = !reused && checkpointed &&
+                   checkpointed_case_difference(
+                       *checkpointed, CaseConfig::from_string(resolved[i], run.out_dir, {}))
+                       .empty();
       std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
-                << " = " << value << (reused ? ": already complete in " : " -> ") << run.out_dir
-                << "\n";
+                << " = " << value
+                << (reused       ? ": already complete in "
+                    : run.resume ? ": continues its checkpoint in "
+                                 : " -> ")
+                << run.out_dir << "\n";
       const int status = reused ? 0 : run_command(run);
       json point = {{"value", numeric_values[i]},
                     {"dir", fs::path(run.out_dir).filename().string()},

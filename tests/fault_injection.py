@@ -442,6 +442,22 @@ class Sweeps(FolderState):
         self.assertEqual([q["reused"] for q in sw["points"]], [True, True, False])
         self.assertEqual([summary(d / f"hydro.cells={v}")["run_id"] for v in (32, 48)], ids)
 
+    def test_a_particle_point_stopped_midway_continues_its_checkpoint(self):
+        d = self.tmp / "s"
+        args = [GRANVV, "sweep"] + MD_RESUMABLE + ["--set", "md.checkpoint_interval=1000",
+                                                   "--set", "md.seed=1,2", "--out", str(d)]
+        p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.assertTrue(wait_for(lambda: frames_started(d / "md.seed=1")))
+        time.sleep(0.5)
+        p.send_signal(signal.SIGINT)
+        p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + signal.SIGINT)
+        r = subprocess.run(args, capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("continues its checkpoint", r.stderr)
+        self.assertTrue(summary(d / "md.seed=1")["md"]["checkpoints"]["resumed"])
+        self.assertFalse(summary(d / "md.seed=2")["md"]["checkpoints"]["resumed"])
+
     def test_a_killed_sweep_is_not_left_running(self):
         d = self.tmp / "s"
         p = self.sweep(d, "32,20000")
