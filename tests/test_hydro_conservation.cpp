@@ -42,7 +42,8 @@ TEST(HydroConservation, RandomModesWithTransverseFlowConserveEnergy) {
   Physics p{2e-3, 0.01};
   const RunControl control = testing::run_control(0.5);
   auto state =
-      discretize(find_initial_condition("random_modes").generate(random_modes, p), 300, 0.5, true);
+      discretize(find_initial_condition("random_modes").generate(random_modes, DiluteClosure(p)),
+                 300, 0.5, true);
   for (int j = 0; j < state.cells(); ++j)
     state.node_vy[j] = 0.01 * std::sin(2 * M_PI * 3 * state.node_x[j]);
   const RunResult r = run_hydro(DiluteClosure(p), state, control);

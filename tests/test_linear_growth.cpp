@@ -47,7 +47,7 @@ TEST_P(LinearGrowth, RateMatchesDispersionRelation) {
       {"mode", (long long)k}, {"linear_branch", (long long)branch}, {"linear_amplitude", 1e-6}};
   const auto modes = hcs_modes(kPhysics, k);
   const int cells = k <= 5 ? 1000 : 2000;
-  const auto states = evolve(find_initial_condition("linear_mode").generate(linear_mode, kPhysics),
+  const auto states = evolve(find_initial_condition("linear_mode").generate(linear_mode, kClosure),
                              modes[branch].rate, cells);
   const MeasuredRate r = measure_linear_rate(states, kClosure, k, branch);
   EXPECT_LT(r.relative_error, 1e-3) << "k = " << k << " branch " << branch << ": measured "
