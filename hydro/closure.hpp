@@ -59,7 +59,7 @@ struct HcsLinearisation {
   double conductivity = 0.0;          // kappa
   double cooling_density = 0.0;       // dLambda/dn at fixed T
   double cooling_temperature = 0.0;   // dLambda/dT - Lambda at fixed n (relative to Haff)
-  // Real-valued mode numbers k = kx / (2 pi) below which the clustering mode (det A < 0:
+  // Real-valued mode numbers k = kx / (2 pi) below which the clustering mode (det A > 0:
   // p_n (kappa kx^2 + Lambda_T') < p_T Lambda_n) and the shear mode (eta_xy kx^2 < eps) grow
   // (hydro/linear_stability.hpp). Each closure computes them from its own formulas.
   double clustering_cutoff_mode = 0.0;

@@ -21,6 +21,8 @@
 // the linearised loss -(8q/K)(n^2 T^{3/2} - T_H^{3/2}) relative to Haff cooling, -i kx w the
 // compressional heating -n T v_x and -K kx^2 theta the heat conduction.
 //
+// Any closure: det A = -kx^2 [p_n (kappa kx^2 + Lambda_T') - p_T Lambda_n], so a real rate crosses
+// zero at kx^2 = (p_T Lambda_n - p_n Lambda_T') / (p_n kappa) (HcsLinearisation's cutoff modes).
 // Dilute closure: det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e.
 // mode k is unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
 // stability boundary (no complex pair crosses the imaginary axis) follows from Routh-Hurwitz:
