@@ -100,7 +100,7 @@ std::vector<KeySpec> rows_without_initial() {
        "run the hydro for this case (false: a particle-only scene)"},
       {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
        "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
-       "disks (docs/physics.md §10)"},
+       "disks (docs/physics.md §9)"},
       {"hydro.cells", kInteger, 2000, closed_closed(4, kMaxCells), "number of Lagrangian cells"},
       {"hydro.t_end", kReal, 4.0, positive(),
        "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},

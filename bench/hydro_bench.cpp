@@ -1,7 +1,7 @@
 // Speed of the continuum engine, as figures: wall time and cell-steps/s of the paper's
 // single-mode scene (cases/single_mode.toml) and clustering scene (cases/clustering.toml) run to
 // n_max = 1e6, and of the scheme's building blocks; the single mode and one step also with the
-// Enskog closure (docs/physics.md §10), whose cost per cell-step issue 11 bounds by 1.5 times the
+// Enskog closure (docs/physics.md §9), whose cost per cell-step issue 11 bounds by 1.5 times the
 // dilute one. Run: build/granvv_bench (add --benchmark_repetitions=5 for spread).
 #include <benchmark/benchmark.h>
 

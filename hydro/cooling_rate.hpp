@@ -1,5 +1,5 @@
 #pragma once
-// The inelastic loss of the cooling term (physics.cooling; docs/physics.md §10). Kinetic theory
+// The inelastic loss of the cooling term (physics.cooling; docs/physics.md §9). Kinetic theory
 // of smooth inelastic disks cools at a rate proportional to 1 - r^2 = 4q(1 - q) (r = 1 - 2q);
 // the paper's 8q/K keeps its small-q limit 4q. "exact" multiplies the cooling term of any
 // closure by (1 - q).

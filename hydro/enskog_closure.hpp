@@ -1,5 +1,5 @@
 #pragma once
-// The Enskog dense-gas closure of the scaled 2D granular hydrodynamics (docs/physics.md §10):
+// The Enskog dense-gas closure of the scaled 2D granular hydrodynamics (docs/physics.md §9):
 // each term of the dilute closure (hydro/dilute_closure.hpp) times an Enskog factor of the
 // local area fraction phi = phi0 n (hydro/enskog_factors.hpp), with r = 1 - 2q:
 //   p = n T F_p,  eta = (K/4) T^{1/2} F_eta,  eta_xy = (K/4) T^{1/2} F_eta_xy,

@@ -1,5 +1,5 @@
 #pragma once
-// The Enskog factors of the dense hard-disk gas (docs/physics.md §10), as pure functions of the
+// The Enskog factors of the dense hard-disk gas (docs/physics.md §9), as pure functions of the
 // local area fraction phi (and the restitution r), so that the closure, its tests and the docs
 // read one definition:
 //   chi(phi)  = (1 - 7 phi/16) / (1 - phi)^2                   Henderson's contact value
@@ -18,7 +18,7 @@
 namespace granvv::hydro::enskog {
 
 // Past this area fraction hard disks freeze (fluid-solid coexistence begins near phi = 0.69;
-// docs/physics.md §10) and the fluid closure no longer applies.
+// docs/physics.md §9) and the fluid closure no longer applies.
 inline constexpr double kFreezingAreaFraction = 0.69;
 
 inline constexpr double kPi = 3.14159265358979323846;

@@ -248,7 +248,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "",
                  "--set hydro.cells=abc",
                  {"--set hydro.cells=abc", "hydro.cells", "abc", "an integer"}},
-        // The closure keys (docs/physics.md §10).
+        // The closure keys (docs/physics.md §9).
         BadInput{"closure_unknown",
                  "",
                  "single_mode --set hydro.closure=van_der_waals",

@@ -1,4 +1,4 @@
-// The Enskog closure (hydro/enskog_closure.hpp, docs/physics.md §10): each factor against its
+// The Enskog closure (hydro/enskog_closure.hpp, docs/physics.md §9): each factor against its
 // formula written out here, the closure's coefficients as the dilute ones times the factors,
 // the sound speed against a finite-difference derivative of the pressure along the adiabat,
 // the dilute limit bit for bit, the exact cooling factor, the parameter checks, and a run that
@@ -125,7 +125,7 @@ TEST(EnskogClosure, CoefficientsAreTheDiluteOnesTimesTheFactors) {
 
 TEST(EnskogClosure, VanishingAreaFractionIsTheDiluteClosureBitForBit) {
   // phi0 = 1e-300: every factor rounds to 1 (phi <= 1e-290), so each coefficient is the dilute
-  // one to the last bit, and so is a run (docs/physics.md §10 gives the single_mode comparison).
+  // one to the last bit, and so is a run (docs/physics.md §9 gives the single_mode comparison).
   const Physics physics{2e-3, 0.03};
   for (const CoolingRate cooling : {CoolingRate::small_q, CoolingRate::exact}) {
     const DiluteClosure dilute(physics, cooling);

@@ -2,7 +2,7 @@
 // scheme, against the rates of the dispersion relation (hydro/linear_stability.hpp), for
 // unstable and stable modes k <= 20 and all three branches, and the transverse shear mode; the
 // same for the Enskog closure at phi0 = 0.2 with the exact cooling rate (its own dispersion
-// relation, docs/physics.md §10).
+// relation, docs/physics.md §9).
 // Tolerance 1e-3 relative: the spatial error of the scheme is (kx h)^2/12 = 3e-4 at k = 20
 // on 2000 cells, the temporal error (omega dt)^2/12 < 1e-4 at cfl = 0.5, and the nonlinear
 // correction is of the order of the amplitude 1e-6.
