@@ -192,7 +192,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   if (c.boolean("hydro.enabled") && !c.boolean("compare.enabled")) {
     check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
   }
-  const auto fields = hydro::make_initial_fields(ini, s.physics);
+  const auto fields = hydro::make_initial_fields(ini, *make_hydro_closure(s));
   const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
   for (int i = 0; i < s.cells; ++i) {
     if (!(state.cell_mass[i] > 0.0) || !(state.cell_T[i] > 0.0)) {
@@ -212,9 +212,9 @@ void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
                 double(s.cells) * std::ceil(t_end / step.dt_max), kMaxCellSteps, "cell-steps",
                 "the hydro run (" + end_key + " / hydro.dt_max steps)");
   // The first step's size, kept to t_end: an estimate of the whole run.
-  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, s.physics), s.cells,
-                                       s.node_offset, false);
   const auto closure = make_hydro_closure(s);
+  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, *closure), s.cells,
+                                       s.node_offset, false);
   hydro::CellGeometry cells;
   hydro::measure_cells(state, cells);
   const hydro::TimeStepLimit first = hydro::TimeStepLimiter(*closure, step).limit(state, cells);

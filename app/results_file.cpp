@@ -61,6 +61,9 @@ void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out)
   write_attribute(g, "K", p.K);
   write_attribute(g, "q", p.q);
   write_attribute(g, "t0", hydro::haff_time_scale(*closure));
+  write_attribute(g, "closure", scene.closure);
+  write_attribute(g, "cooling", hydro::to_string(scene.cooling));
+  write_attribute(g, "area_fraction", scene.area_fraction);
   write_attribute(g, "unstable_modes", double(out.unstable_modes));
   write_attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));
   write_attribute(g, "inertia_tau",
