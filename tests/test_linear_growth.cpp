@@ -66,9 +66,10 @@ TEST_P(LinearGrowth, RateMatchesDispersionRelation) {
   if (branch == 0) {
     // The sign of the leading rate is the instability criterion (dilute: pi k K < sqrt(q)).
     EXPECT_EQ(r.measured.real() > 0, k <= clustering_unstable_modes(closure));
-    if (name == "dilute")
+    if (name == "dilute") {
       EXPECT_EQ(k <= clustering_unstable_modes(closure),
                 M_PI * k * kPhysics.K < std::sqrt(kPhysics.q));
+    }
   }
 }
 
