@@ -98,9 +98,6 @@ std::vector<KeySpec> rows_without_initial() {
       // [hydro]
       {"hydro.enabled", kBoolean, true, any_value(),
        "run the hydro for this case (false: a particle-only scene)"},
-      {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
-       "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
-       "disks (docs/physics.md §9)"},
       {"hydro.cells", kInteger, 2000, closed_closed(4, kMaxCells), "number of Lagrangian cells"},
       {"hydro.t_end", kReal, 4.0, positive(),
        "end time of the hydro run (with compare.enabled: md.t_end in scaled units instead)"},
@@ -127,6 +124,9 @@ std::vector<KeySpec> rows_without_initial() {
        "wall-clock seconds between progress lines"},
       {"hydro.series_every", kInteger, 1, closed_closed(1, kIntMax),
        "write the time series every N steps"},
+      {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
+       "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
+       "disks (docs/physics.md §9)"},
 
       // [analysis]
       {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),

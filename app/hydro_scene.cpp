@@ -97,14 +97,14 @@ void check_convergence_study(const CaseConfig& c, const HydroScene& s) {
 
 // hydro.closure, physics.cooling and physics.area_fraction. A comparison's hydro models the
 // particle scene, so its phi0 is md.area_fraction, and a physics.area_fraction that says
-// otherwise is refused.
+// otherwise is refused (0, the default, is "not given": a resolved case.toml runs again).
 void read_closure(const CaseConfig& c, HydroScene& s) {
   s.closure = c.string("hydro.closure");
   s.cooling = hydro::cooling_rate_from_name(c.string("physics.cooling"));
   s.area_fraction = c.real("physics.area_fraction");
   if (c.boolean("md.enabled") && c.boolean("compare.enabled")) {
     const double scene = c.real("md.area_fraction");
-    if (c.origin("physics.area_fraction") != "default" && s.area_fraction != scene) {
+    if (s.area_fraction != 0.0 && s.area_fraction != scene) {  // 0: not given
       throw ConfigError(
           c.origin("physics.area_fraction") +
           ": physics.area_fraction = " + format_value(c.value("physics.area_fraction")) +
