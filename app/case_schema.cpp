@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "app/case_config.hpp"
+#include "hydro/closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 
@@ -84,6 +85,12 @@ std::vector<KeySpec> rows_without_initial() {
        "Knudsen number K = (2/sqrt(pi)) / (sigma Lx n0); the hydrodynamics needs K << 1, and "
        "beyond 100 the transport coefficients (K^2) overflow the step control"},
       {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
+      {"physics.area_fraction", kReal, 0.0, closed_open(0, 1),
+       "mean area fraction phi0 of the dense-gas closure (phi = phi0 n; 0 = not given; "
+       "hydro.closure = \"enskog\" needs it, a comparison takes md.area_fraction)"},
+      {"physics.cooling", kString, "small_q", one_of(hydro::cooling_rate_names()),
+       "inelastic loss of the cooling term: \"small_q\" = the paper's 8q/K (1 - r^2 ~ 4q), "
+       "\"exact\" = times (1 - q) (1 - r^2 = 4q(1 - q))"},
 
       // [initial]: initial.type and the parameters its generators declare (hydro/initial_*.cpp),
       // inserted here by with_initial_condition_rows().
@@ -117,6 +124,9 @@ std::vector<KeySpec> rows_without_initial() {
        "wall-clock seconds between progress lines"},
       {"hydro.series_every", kInteger, 1, closed_closed(1, kIntMax),
        "write the time series every N steps"},
+      {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
+       "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
+       "disks (docs/physics.md §9)"},
 
       // [analysis]
       {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),

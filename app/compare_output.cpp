@@ -105,7 +105,7 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
   const auto& run = hydro_out.run;
   const double cell_steps = double(run.steps) * hydro.cells;
   // The hydro's Haff time (hydro/haff.hpp) in MD units.
-  const double t0_hydro = sc.md_time(hydro::haff_time_scale(hydro.physics));
+  const double t0_hydro = sc.md_time(hydro::haff_time_scale(*make_hydro_closure(hydro)));
   const auto& haff = md_out.haff;
   return {
       {"status", "ok"},

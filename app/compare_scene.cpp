@@ -47,13 +47,13 @@ void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& 
 // noise-born modes differ between seeds, so the mean field would average them away), and the
 // linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with exp(A s)
 // (hydro/linear_stability.hpp), rms over members.
-void compare_density_modes(CompareOutcome& out, int modes, const hydro::Physics& physics,
+void compare_density_modes(CompareOutcome& out, int modes, const hydro::Closure& closure,
                            const MdOutcome& md_out,
                            const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
                            const fields::FieldSeries& hydro_on_bins, double n0) {
   const int members = static_cast<int>(md_out.runs.size());
   for (int k = 1; k <= modes; ++k) {
-    out.theory_rate.push_back(hydro::hcs_modes(physics, k)[0].rate.real());
+    out.theory_rate.push_back(hydro::hcs_modes(closure, k)[0].rate.real());
   }
   std::vector<std::vector<Eigen::Vector3cd>> initial(members);
   for (int r = 0; r < members; ++r) {
@@ -77,7 +77,7 @@ void compare_density_modes(CompareOutcome& out, int modes, const hydro::Physics&
         for (double n : snaps[s_index].n) relative.push_back(n / n0);
         power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
         const Eigen::Vector3cd evolved =
-            hydro::hcs_linear_evolution(physics, k, initial[r][k - 1], out.collision_clock[i]);
+            hydro::hcs_linear_evolution(closure, k, initial[r][k - 1], out.collision_clock[i]);
         theory2 += std::norm(evolved[0]);
       }
       // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
@@ -140,6 +140,7 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
 void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
                          const fields::FieldSeries& md_fields) {
   hydro.physics = scene.physics();
+  hydro.area_fraction = scene.area_fraction;
   auto& ctl = hydro.control;
   ctl.t_end = scene.scaled_time(md_t_end);
   ctl.output_times.clear();
@@ -184,6 +185,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   const double n0 = sc.number_density();
   const int bins = md.spec.bins;
   const int members = static_cast<int>(md_out.runs.size());
+  const auto closure = make_hydro_closure(hydro);  // its Haff time and linear theory
   CompareOutcome out;
   for (int b = 0; b < bins; ++b) out.x.push_back(-0.5 + (b + 0.5) / bins);
 
@@ -220,8 +222,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     const fields::FieldSnapshot& h = continuum.fields->snapshots[j];
     out.t.push_back(m.t);
     record_peak_and_energies(out, h, m, members);
-    out.collision_clock.push_back(
-        hydro::collision_clock(m.t, hydro::haff_time_scale(hydro.physics)));
+    out.collision_clock.push_back(hydro::collision_clock(m.t, hydro::haff_time_scale(*closure)));
     out.hydro_on_bins.snapshots.push_back(h);
     out.md_on_bins.snapshots.push_back(m);
   }
@@ -245,8 +246,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   }
 
   if (scene.density_modes > 0 && !pairs.empty()) {
-    compare_density_modes(out, scene.density_modes, hydro.physics, md_out, pairs, *continuum.fields,
-                          n0);
+    compare_density_modes(out, scene.density_modes, *closure, md_out, pairs, *continuum.fields, n0);
   }
 
   out.window = compare::agreement_window(out.t, tracks, scene.agreement_fraction);

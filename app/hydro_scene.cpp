@@ -56,9 +56,11 @@ void check_resolved_modes(const CaseConfig& c, int cells) {
 }
 
 // The clustering and shear modes the theory counts must fit an int (K not absurdly small).
-void check_mode_counts(const CaseConfig& c, const hydro::Physics& physics) {
+void check_mode_counts(const CaseConfig& c, const HydroScene& s) {
   try {
-    (void)hydro::shear_unstable_modes(physics);
+    const auto closure = make_hydro_closure(s);
+    (void)hydro::shear_unstable_modes(*closure);
+    (void)hydro::clustering_unstable_modes(*closure);
   } catch (const std::overflow_error&) {
     throw ConfigError(c.origin("physics.K") +
                       ": physics.K = " + format_value(c.value("physics.K")) +
@@ -93,7 +95,43 @@ void check_convergence_study(const CaseConfig& c, const HydroScene& s) {
                 cell_steps, kMaxCellSteps, "cell-steps", "the convergence study");
 }
 
+// hydro.closure, physics.cooling and physics.area_fraction. A comparison's hydro models the
+// particle scene, so its phi0 is md.area_fraction, and a physics.area_fraction that says
+// otherwise is refused (0, the default, is "not given": a resolved case.toml runs again).
+void read_closure(const CaseConfig& c, HydroScene& s) {
+  s.closure = c.string("hydro.closure");
+  s.cooling = hydro::cooling_rate_from_name(c.string("physics.cooling"));
+  s.area_fraction = c.real("physics.area_fraction");
+  if (c.boolean("md.enabled") && c.boolean("compare.enabled")) {
+    const double scene = c.real("md.area_fraction");
+    if (s.area_fraction != 0.0 && s.area_fraction != scene) {  // 0: not given
+      throw ConfigError(
+          c.origin("physics.area_fraction") +
+          ": physics.area_fraction = " + format_value(c.value("physics.area_fraction")) +
+          " contradicts md.area_fraction = " + format_value(c.value("md.area_fraction")) +
+          " of the particle scene the hydro models (allowed: leave it unset or "
+          "equal to md.area_fraction)");
+    }
+    s.area_fraction = scene;
+  }
+  if (const auto problem = hydro::closure_parameter_problem(s.closure, closure_parameters(s))) {
+    const std::string key = "physics." + problem->parameter;
+    const std::string origin = c.origin(key);
+    throw ConfigError((origin == "default" ? c.source() : origin) + ": " + key + " = " +
+                      format_value(c.value(key)) + ": hydro.closure = \"" + s.closure +
+                      "\": " + problem->reason);
+  }
+}
+
 }  // namespace
+
+hydro::ClosureParameters closure_parameters(const HydroScene& scene) {
+  return {scene.physics, {{"area_fraction", scene.area_fraction}}, scene.cooling};
+}
+
+std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene) {
+  return hydro::make_closure(scene.closure, closure_parameters(scene));
+}
 
 HydroScene hydro_scene_from(const CaseConfig& c) {
   HydroScene s;
@@ -109,7 +147,7 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
   }
   s.initial = hydro::initial_parameters(c.string("initial.type"), std::move(values));
   const auto& ini = s.initial;
-  s.closure = "dilute";  // the paper's closure; a hydro.closure key comes with the closures issue
+  read_closure(c, s);
   s.cells = c.int_value("hydro.cells");
   s.node_offset = c.real("hydro.node_offset");
   s.transverse = c.boolean("hydro.transverse_velocity");
@@ -147,14 +185,14 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
     throw ConfigError(c.origin(key) + ": " + key + " = " + format_value(c.value(key)) + ": " +
                       problem->reason);
   }
-  check_mode_counts(c, s.physics);
+  check_mode_counts(c, s);
   check_resolved_modes(c, s.cells);
   check_convergence_study(c, s);
   // In a comparison the hydro runs to md.t_end instead (md_scene_from checks that run).
   if (c.boolean("hydro.enabled") && !c.boolean("compare.enabled")) {
     check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
   }
-  const auto fields = hydro::make_initial_fields(ini, s.physics);
+  const auto fields = hydro::make_initial_fields(ini, *make_hydro_closure(s));
   const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
   for (int i = 0; i < s.cells; ++i) {
     if (!(state.cell_mass[i] > 0.0) || !(state.cell_T[i] > 0.0)) {
@@ -174,9 +212,9 @@ void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
                 double(s.cells) * std::ceil(t_end / step.dt_max), kMaxCellSteps, "cell-steps",
                 "the hydro run (" + end_key + " / hydro.dt_max steps)");
   // The first step's size, kept to t_end: an estimate of the whole run.
-  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, s.physics), s.cells,
+  const auto closure = make_hydro_closure(s);
+  const auto state = hydro::discretize(hydro::make_initial_fields(s.initial, *closure), s.cells,
                                        s.node_offset, false);
-  const auto closure = hydro::make_closure(s.closure, {s.physics, {}});
   hydro::CellGeometry cells;
   hydro::measure_cells(state, cells);
   const hydro::TimeStepLimit first = hydro::TimeStepLimiter(*closure, step).limit(state, cells);
@@ -191,12 +229,11 @@ void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
 
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress) {
   HydroOutcome out;
-  const auto& physics = scene.physics;
-  const auto closure = hydro::make_closure(scene.closure, {physics, {}});
-  out.fields =
-      scene.given_fields ? *scene.given_fields : hydro::make_initial_fields(scene.initial, physics);
-  out.unstable_modes = hydro::clustering_unstable_modes(physics);
-  out.shear_unstable_modes = hydro::shear_unstable_modes(physics);
+  const auto closure = make_hydro_closure(scene);
+  out.fields = scene.given_fields ? *scene.given_fields
+                                  : hydro::make_initial_fields(scene.initial, *closure);
+  out.unstable_modes = hydro::clustering_unstable_modes(*closure);
+  out.shear_unstable_modes = hydro::shear_unstable_modes(*closure);
   out.run = hydro::run_hydro(
       *closure, hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse),
       scene.control, progress);
@@ -241,7 +278,7 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
   }
 
   out.haff_max_relative_error = hydro::haff_max_relative_error(run.series.t, run.series.T_mean,
-                                                               hydro::haff_time_scale(physics));
+                                                               hydro::haff_time_scale(*closure));
 
   if (const auto seeded = hydro::seeded_eigenmode(scene.initial)) {
     std::vector<hydro::LagrangianState> states;

@@ -7,6 +7,7 @@
 
 #include "app/case_config.hpp"
 #include "fields/field_series.hpp"
+#include "hydro/closure.hpp"
 #include "hydro/convergence_study.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/initial_conditions.hpp"
@@ -18,6 +19,9 @@ namespace granvv::app {
 struct HydroScene {
   hydro::Physics physics;
   std::string closure;  // a registered closure (hydro/closure_registry.cpp)
+  // physics.area_fraction (in a comparison: the particle scene's), 0 = not given.
+  double area_fraction = 0.0;
+  hydro::CoolingRate cooling = hydro::CoolingRate::small_q;
   hydro::InitialParameters initial;
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (app/compare_scene.hpp).
@@ -35,6 +39,10 @@ struct HydroScene {
   double convergence_t = 0.0;
   double convergence_cfl = 0.0;
 };
+
+// The closure's parameters and the closure itself, from the scene's physics.
+hydro::ClosureParameters closure_parameters(const HydroScene& scene);
+std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene);
 
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
 // engine cannot run (meshes that do not nest, fields that are negative somewhere...).

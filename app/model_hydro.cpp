@@ -35,7 +35,7 @@ fields::ModelResult hydro_result(const HydroScene& scene, const HydroOutcome& ou
   } else {
     r.fields = out.cell_fields;
   }
-  const auto closure = hydro::make_closure(scene.closure, {scene.physics, {}});
+  const auto closure = make_hydro_closure(scene);
   r.observables.push_back({"haff_t0", hydro::haff_time_scale(*closure)});
   r.observables.push_back({"t_final", out.run.snapshots.back().state.t});
   if (out.run.status == hydro::RunStatus::singularity && out.singularity) {

@@ -46,12 +46,13 @@ void write_lagrangian(H5::Group g, const HydroOutcome& out) {
 
 void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out) {
   const auto& p = scene.physics;
+  const auto closure = make_hydro_closure(scene);
   const int kmax = std::clamp(2 * out.shear_unstable_modes, 20, 10000);  // at most 240 kB
   std::vector<double> k, clustering, shear;
   for (int m = 1; m <= kmax; ++m) {
     k.push_back(m);
-    clustering.push_back(hydro::hcs_modes(p, m)[0].rate.real());
-    shear.push_back(hydro::shear_rate(p, m));
+    clustering.push_back(hydro::hcs_modes(*closure, m)[0].rate.real());
+    shear.push_back(hydro::shear_rate(*closure, m));
   }
   write_vector(g, "mode_k", k);
   write_vector(g, "clustering_rate", clustering);
@@ -59,7 +60,10 @@ void write_theory(H5::Group g, const HydroScene& scene, const HydroOutcome& out)
   // The physics the hydro ran with (in a comparison, the particle scene's K and q).
   write_attribute(g, "K", p.K);
   write_attribute(g, "q", p.q);
-  write_attribute(g, "t0", hydro::haff_time_scale(p));
+  write_attribute(g, "t0", hydro::haff_time_scale(*closure));
+  write_attribute(g, "closure", scene.closure);
+  write_attribute(g, "cooling", hydro::to_string(scene.cooling));
+  write_attribute(g, "area_fraction", scene.area_fraction);
   write_attribute(g, "unstable_modes", double(out.unstable_modes));
   write_attribute(g, "shear_unstable_modes", double(out.shear_unstable_modes));
   write_attribute(g, "inertia_tau",

@@ -73,7 +73,10 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["t_final"] = run.snapshots.back().state.t;
   h["unstable_modes"] = out.unstable_modes;
   h["shear_unstable_modes"] = out.shear_unstable_modes;
-  h["clustering_cutoff_mode"] = hydro::clustering_cutoff_mode(scene.physics);
+  h["clustering_cutoff_mode"] = hydro::clustering_cutoff_mode(*make_hydro_closure(scene));
+  h["closure"] = scene.closure;
+  h["cooling"] = hydro::to_string(scene.cooling);
+  h["area_fraction"] = scene.area_fraction;
 
   std::optional<double> tau;
   if (run.status == hydro::RunStatus::singularity && out.singularity) tau = out.singularity->tau;

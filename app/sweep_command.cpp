@@ -118,7 +118,7 @@ std::string read_text(const fs::path& file) {
 bool point_is_complete(const fs::path& point_dir, const std::string& resolved_toml) {
   const json summary = read_json_or_null(point_dir / "summary.json");
   const json status = value_or_null(summary, "status");
-  return (status == "ok" || status == "singularity") &&
+  return (status == "ok" || status == "singularity" || status == "closure_limit") &&
          read_text(point_dir / "case.toml") == resolved_toml;
 }
 

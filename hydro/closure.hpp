@@ -16,9 +16,11 @@
 // make_closure (hydro/closure_registry.cpp).
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "hydro/cooling_rate.hpp"
 #include "hydro/physics.hpp"
 
 namespace granvv::hydro {
@@ -33,6 +35,12 @@ struct CellCoefficients {
   std::vector<double> viscosity;        // longitudinal eta(n, T): stress eta dv_x/dx
   std::vector<double> shear_viscosity;  // eta_xy(n, T): stress eta_xy dv_y/dx
   std::vector<double> conductivity;     // kappa(n, T): heat flux -kappa dT/dx
+
+  void resize(size_t cells) {
+    for (auto* column :
+         {&pressure, &adiabatic_modulus, &viscosity, &shear_viscosity, &conductivity})
+      column->resize(cells);
+  }
 };
 
 // Coefficients of the linearised Eqs. (1)-(2) about the homogeneous cooling state n = 1, v = 0,
@@ -51,6 +59,11 @@ struct HcsLinearisation {
   double conductivity = 0.0;          // kappa
   double cooling_density = 0.0;       // dLambda/dn at fixed T
   double cooling_temperature = 0.0;   // dLambda/dT - Lambda at fixed n (relative to Haff)
+  // Real-valued mode numbers k = kx / (2 pi) below which the clustering mode (det A > 0:
+  // p_n (kappa kx^2 + Lambda_T') < p_T Lambda_n) and the shear mode (eta_xy kx^2 < eps) grow
+  // (hydro/linear_stability.hpp). Each closure computes them from its own formulas.
+  double clustering_cutoff_mode = 0.0;
+  double shear_cutoff_mode = 0.0;
 };
 
 class Closure {
@@ -72,17 +85,37 @@ class Closure {
                     std::vector<double>& cooled) const = 0;
 
   virtual HcsLinearisation hcs_linearisation() const = 0;
+
+  // Why the closure no longer describes cells of densities n (empty while it does): the driver
+  // stops a run there (hydro/driver.hpp, RunStatus::closure_limit). The dilute gas has no limit.
+  virtual std::string validity_problem(const std::vector<double>& n) const {
+    (void)n;
+    return {};
+  }
 };
 
-// What a closure is built from: the paper's K and q and closure-specific named parameters.
+// What a closure is built from: the paper's K and q, closure-specific named parameters (the
+// Enskog closure's "area_fraction"), and the inelastic loss of the cooling term, which every
+// closure applies.
 struct ClosureParameters {
   Physics physics;
   std::map<std::string, double> extra;
+  CoolingRate cooling = CoolingRate::small_q;
+};
+
+// A closure parameter outside what the closure can use: its name in `extra` and why.
+struct ClosureParameterProblem {
+  std::string parameter;  // "area_fraction"
+  std::string reason;     // "the enskog closure needs an area fraction in (0, 0.69)"
 };
 
 // The registered closures by name ("dilute": paper Eqs. (1)-(2)). Throws std::invalid_argument
 // for an unknown name, listing the known ones.
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
 std::vector<std::string> closure_names();
+// The first parameter of `params` that closure `name` cannot use (none: nullopt). Throws like
+// make_closure for an unknown name.
+std::optional<ClosureParameterProblem> closure_parameter_problem(const std::string& name,
+                                                                 const ClosureParameters& params);
 
 }  // namespace granvv::hydro

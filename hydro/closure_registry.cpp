@@ -5,23 +5,30 @@
 
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
+#include "hydro/enskog_closure.hpp"
 
 namespace granvv::hydro {
 namespace {
 
-using ClosureFactory = std::function<std::unique_ptr<Closure>(const ClosureParameters&)>;
+struct RegisteredClosure {
+  std::function<std::unique_ptr<Closure>(const ClosureParameters&)> make;
+  // Empty: the closure reads no parameter beyond K, q and the cooling rate.
+  std::function<std::optional<ClosureParameterProblem>(const ClosureParameters&)> problem;
+};
 
-const std::map<std::string, ClosureFactory>& closure_registry() {
-  static const std::map<std::string, ClosureFactory> registry{
+const std::map<std::string, RegisteredClosure>& closure_registry() {
+  static const std::map<std::string, RegisteredClosure> registry{
       {"dilute",
-       [](const ClosureParameters& p) { return std::make_unique<DiluteClosure>(p.physics); }},
+       {[](const ClosureParameters& p) {
+          return std::make_unique<DiluteClosure>(p.physics, p.cooling);
+        },
+        {}}},
+      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem}},
   };
   return registry;
 }
 
-}  // namespace
-
-std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params) {
+const RegisteredClosure& find_closure(const std::string& name) {
   const auto& registry = closure_registry();
   const auto it = registry.find(name);
   if (it == registry.end()) {
@@ -29,7 +36,19 @@ std::unique_ptr<Closure> make_closure(const std::string& name, const ClosurePara
     for (const auto& entry : registry) known += (known.empty() ? "" : ", ") + entry.first;
     throw std::invalid_argument("unknown hydro closure '" + name + "'; known: " + known);
   }
-  return it->second(params);
+  return it->second;
+}
+
+}  // namespace
+
+std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params) {
+  return find_closure(name).make(params);
+}
+
+std::optional<ClosureParameterProblem> closure_parameter_problem(const std::string& name,
+                                                                 const ClosureParameters& params) {
+  const auto& closure = find_closure(name);
+  return closure.problem ? closure.problem(params) : std::nullopt;
 }
 
 std::vector<std::string> closure_names() {

@@ -4,17 +4,15 @@
 
 namespace granvv::hydro {
 
-DiluteClosure::DiluteClosure(const Physics& physics)
-    : physics_(physics), cooling_coefficient_(8.0 * physics.q / physics.K) {}
+DiluteClosure::DiluteClosure(const Physics& physics, CoolingRate cooling)
+    : physics_(physics),
+      loss_factor_(inelastic_loss_factor(cooling, physics.q)),
+      cooling_coefficient_(8.0 * physics.q / physics.K * loss_factor_) {}
 
 void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
                                       CellCoefficients& out) const {
   const size_t cells = n.size();
-  out.pressure.resize(cells);
-  out.adiabatic_modulus.resize(cells);
-  out.viscosity.resize(cells);
-  out.shear_viscosity.resize(cells);
-  out.conductivity.resize(cells);
+  out.resize(cells);
 #pragma GCC ivdep  // element i reads only element i
   for (size_t i = 0; i < cells; ++i) {
     const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
@@ -50,9 +48,11 @@ void DiluteClosure::cool(const std::vector<double>& n, const std::vector<double>
 
 HcsLinearisation DiluteClosure::hcs_linearisation() const {
   HcsLinearisation h;
-  // Haff: dT/dt = -(8q/K) T^{3/2}, t0 = K/(4q) (paper, after Eq. 2); +inf for q = 0.
-  h.haff_time = physics_.K / (4.0 * physics_.q);
-  h.epsilon = 4.0 * physics_.q / physics_.K;
+  // Haff: dT/dt = -(8q/K) g T^{3/2}, t0 = K/(4q g) (paper, after Eq. 2, g = 1); +inf for q = 0.
+  // g = 1 exactly for the paper's cooling, so these are its K/(4q) and 4q/K bit for bit.
+  const double q_eff = physics_.q * loss_factor_;
+  h.haff_time = physics_.K / (4.0 * q_eff);
+  h.epsilon = 4.0 * physics_.q / physics_.K * loss_factor_;
   h.pressure_density = 1.0;      // dp/dn = T
   h.pressure_temperature = 1.0;  // dp/dT = n
   h.compression_heating = pressure(1.0, 1.0);
@@ -61,6 +61,10 @@ HcsLinearisation DiluteClosure::hcs_linearisation() const {
   h.conductivity = conductivity(1.0);
   h.cooling_density = 2.0 * h.epsilon;  // Lambda/n = 8q/K
   h.cooling_temperature = h.epsilon;    // (3/2 - 1) Lambda = 4q/K
+  // det A = -kx^2 (K kx^2 - eps) and eps - K kx^2/4: pi k K < sqrt(q g), < 2 sqrt(q g).
+  constexpr double kPi = 3.14159265358979323846;
+  h.clustering_cutoff_mode = std::sqrt(q_eff) / (kPi * physics_.K);
+  h.shear_cutoff_mode = 2.0 * std::sqrt(q_eff) / (kPi * physics_.K);
   return h;
 }
 

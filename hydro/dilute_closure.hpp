@@ -1,7 +1,8 @@
 #pragma once
 // The dilute closure of the scaled 2D granular hydrodynamics, paper Eqs. (1)-(2) (Efrati,
 // Livne & Meerson, PRL 94, 088001 (2005); docs/physics.md §1, §9):
-//   p = n T,  eta = eta_xy = (K/4) T^{1/2},  kappa = K T^{1/2},  Lambda = (8q/K) n T^{3/2}.
+//   p = n T,  eta = eta_xy = (K/4) T^{1/2},  kappa = K T^{1/2},  Lambda = (8q/K) g n T^{3/2},
+// with g = 1 (the paper) or 1 - q (physics.cooling = "exact", hydro/cooling_rate.hpp).
 // The 2D ideal gas has adiabatic index 2 (T ~ n on an adiabat), so B = 2p and c^2 = 2T. The
 // xy shear viscosity of the dilute gas equals the longitudinal one (no bulk viscosity), so it
 // also drives the transverse velocity v_y(x) (docs/physics.md §6).
@@ -14,7 +15,7 @@ namespace granvv::hydro {
 
 class DiluteClosure final : public Closure {
  public:
-  explicit DiluteClosure(const Physics& physics);
+  explicit DiluteClosure(const Physics& physics, CoolingRate cooling = CoolingRate::small_q);
 
   // The formulas, one per quantity, for one cell.
   static double pressure(double n, double T) { return n * T; }
@@ -22,7 +23,7 @@ class DiluteClosure final : public Closure {
   static double sound_speed(double T) { return std::sqrt(2.0 * T); }
   double viscosity(double T) const { return viscosity_of_root(std::sqrt(T)); }
   double conductivity(double T) const { return conductivity_of_root(std::sqrt(T)); }
-  // c = 8q/K of the sink Lambda = c n T^{3/2}.
+  // c = (8q/K) g of the sink Lambda = c n T^{3/2}.
   double cooling_coefficient() const { return cooling_coefficient_; }
   double cooling_rate(double n, double T) const {
     return cooling_coefficient_ * n * T * std::sqrt(T);
@@ -47,6 +48,7 @@ class DiluteClosure final : public Closure {
   double conductivity_of_root(double sqrt_T) const { return physics_.K * sqrt_T; }
 
   Physics physics_;
+  double loss_factor_;  // g
   double cooling_coefficient_;
 };
 

@@ -16,6 +16,8 @@ std::string to_string(RunStatus s) {
       return "ok";
     case RunStatus::singularity:
       return "singularity";
+    case RunStatus::closure_limit:
+      return "closure_limit";
     case RunStatus::failed:
       return "failed";
   }
@@ -77,7 +79,16 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
     result.mass_drift = std::max(result.mass_drift, std::abs(now.mass - d0.mass));
   };
 
-  while (true) {
+  // The closure's own limit, checked on the initial state and after every accepted step.
+  auto outside_closure = [&] {
+    const std::string problem = closure.validity_problem(cells.density);
+    if (problem.empty()) return false;
+    result.status = RunStatus::closure_limit;
+    result.stop_reason = problem + " at t = " + std::to_string(s.t);
+    return true;
+  };
+
+  while (!outside_closure()) {
     if (s.t >= control.t_end) {
       result.status = RunStatus::completed;
       result.stop_reason = "end time reached";

@@ -1,7 +1,8 @@
 #pragma once
 // The run loop of the continuum engine: time-step control, retries, snapshots at the
 // requested output times, time series of the whole-mesh diagnostics, peak-density
-// crossing times and the stop conditions (end time, singularity, failure).
+// crossing times and the stop conditions (end time, singularity, the closure's own validity
+// limit, failure).
 #include <functional>
 #include <map>
 #include <string>
@@ -31,7 +32,9 @@ struct Snapshot {
   LagrangianState state;
 };
 
-enum class RunStatus { completed, singularity, failed };
+// closure_limit: the state left the range in which the closure applies
+// (Closure::validity_problem, e.g. the Enskog closure at the freezing area fraction).
+enum class RunStatus { completed, singularity, closure_limit, failed };
 std::string to_string(RunStatus s);
 
 struct RunResult {

@@ -15,7 +15,9 @@ namespace granvv::hydro {
 struct InitialConditionType {
   std::string name;                       // initial.type
   std::vector<ParameterSpec> parameters;  // the initial.<name> keys it reads
-  std::function<InitialFields(const ParameterSet&, const Physics&)> generate;
+  // The fields from the parameters; the closure supplies what a type needs of the hydro's
+  // physics (linear_mode: the eigenvector of its homogeneous-cooling theory).
+  std::function<InitialFields(const ParameterSet&, const Closure&)> generate;
   // Optional: a problem beyond the per-key ranges.
   std::function<std::optional<ParameterProblem>(const ParameterSet&)> problem;
   // Optional: the flow-by-inertia reference of a smooth initial velocity.

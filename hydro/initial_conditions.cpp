@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
@@ -41,7 +42,11 @@ InitialParameters initial_parameters(std::string type, ParameterSet values) {
 }
 
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics) {
-  InitialFields f = find_initial_condition(p.type).generate(p.values, physics);
+  return make_initial_fields(p, DiluteClosure(physics));
+}
+
+InitialFields make_initial_fields(const InitialParameters& p, const Closure& closure) {
+  InitialFields f = find_initial_condition(p.type).generate(p.values, closure);
   const double b = p.values.real("transverse_amplitude");
   if (b != 0.0) {
     const double ky = 2.0 * kPi * p.values.integer("transverse_mode");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hydro/closure.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/lagrangian_state.hpp"
 #include "hydro/parameter_set.hpp"
@@ -53,6 +54,8 @@ struct SeededEigenmode {
 // type and values. Throws std::invalid_argument for an
 // unknown type.
 InitialParameters initial_parameters(std::string type, ParameterSet values);
+InitialFields make_initial_fields(const InitialParameters& p, const Closure& closure);
+// The same with the paper's dilute closure of K, q.
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics);
 // First problem of the parameters: a transverse velocity without transverse_velocity, or a
 // problem the type's generator reports.

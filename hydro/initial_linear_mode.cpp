@@ -17,10 +17,10 @@ InitialConditionType linear_mode_initial_condition() {
        "amplitude of the linear eigenmode"},
       {"linear_branch", 0LL, ParameterRange::closed(0, 2), "eigenvalue branch, 0 = most unstable"},
   };
-  type.generate = [](const ParameterSet& p, const Physics& ph) {
+  type.generate = [](const ParameterSet& p, const Closure& closure) {
     constexpr double kPi = 3.14159265358979323846;
     const int mode = static_cast<int>(p.integer("mode"));
-    const auto modes = hcs_modes(ph, mode);
+    const auto modes = hcs_modes(closure, mode);
     const Eigen::Vector3cd V =
         modes.at(p.integer("linear_branch")).eigenvector * p.real("linear_amplitude");
     const double kx = 2.0 * kPi * mode;

@@ -18,7 +18,7 @@ InitialConditionType random_modes_initial_condition() {
        "rms relative amplitude of the perturbation"},
       {"seed", 1LL, ParameterRange::at_least(0), "random seed"},
   };
-  type.generate = [](const ParameterSet& p, const Physics&) {
+  type.generate = [](const ParameterSet& p, const Closure&) {
     constexpr double kPi = 3.14159265358979323846;
     std::mt19937_64 rng(static_cast<unsigned long long>(p.integer("seed")));
     auto uniform01 = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };

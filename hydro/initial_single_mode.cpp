@@ -12,7 +12,7 @@ InitialConditionType single_mode_initial_condition() {
       {"velocity_amplitude", -0.05, ParameterRange::any(), "v = a sin(2 pi mode x), amplitude a"},
       {"mode", 1LL, ParameterRange::at_least(1), "wave number k"},
   };
-  type.generate = [](const ParameterSet& p, const Physics&) {
+  type.generate = [](const ParameterSet& p, const Closure&) {
     constexpr double kPi = 3.14159265358979323846;
     InitialFields f = uniform_fields();
     const double a = p.real("velocity_amplitude"), kx = 2.0 * kPi * p.integer("mode");

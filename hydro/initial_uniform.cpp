@@ -6,7 +6,7 @@ namespace granvv::hydro {
 InitialConditionType uniform_initial_condition() {
   InitialConditionType type;
   type.name = "uniform";
-  type.generate = [](const ParameterSet&, const Physics&) { return uniform_fields(); };
+  type.generate = [](const ParameterSet&, const Closure&) { return uniform_fields(); };
   return type;
 }
 

@@ -95,6 +95,17 @@ int count_below_cutoff(const Physics& physics, double factor) {
   return k;
 }
 
+int count_below(double cutoff) {
+  if (!(cutoff > 0.0)) return 0;
+  if (!(cutoff < static_cast<double>(INT_MAX) - 2.0)) {
+    throw std::overflow_error("linear stability: more than INT_MAX unstable modes (cutoff mode " +
+                              std::to_string(cutoff) + ")");
+  }
+  // Modes k = 1, 2, ... with k < cutoff.
+  const double below = std::ceil(cutoff) - 1.0;
+  return static_cast<int>(below);
+}
+
 std::array<HcsMode, 3> modes_of(const Eigen::Matrix3cd& a) {
   const Eigen::ComplexEigenSolver<Eigen::Matrix3cd> solver(a, /*computeEigenvectors=*/true);
   if (solver.info() != Eigen::Success) {
@@ -190,6 +201,22 @@ double clustering_cutoff_mode(const Physics& physics) {
 
 double shear_cutoff_mode(const Physics& physics) {
   return 2.0 * std::sqrt(physics.q) / (kPi * physics.K);
+}
+
+double clustering_cutoff_mode(const Closure& closure) {
+  return closure.hcs_linearisation().clustering_cutoff_mode;
+}
+
+double shear_cutoff_mode(const Closure& closure) {
+  return closure.hcs_linearisation().shear_cutoff_mode;
+}
+
+int clustering_unstable_modes(const Closure& closure) {
+  return count_below(clustering_cutoff_mode(closure));
+}
+
+int shear_unstable_modes(const Closure& closure) {
+  return count_below(shear_cutoff_mode(closure));
 }
 
 bool clustering_mode_unstable(const Physics& physics, int k) {

@@ -21,6 +21,8 @@
 // the linearised loss -(8q/K)(n^2 T^{3/2} - T_H^{3/2}) relative to Haff cooling, -i kx w the
 // compressional heating -n T v_x and -K kx^2 theta the heat conduction.
 //
+// Any closure: det A = -kx^2 [p_n (kappa kx^2 + Lambda_T') - p_T Lambda_n], so a real rate crosses
+// zero at kx^2 = (p_T Lambda_n - p_n Lambda_T') / (p_n kappa) (HcsLinearisation's cutoff modes).
 // Dilute closure: det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e.
 // mode k is unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
 // stability boundary (no complex pair crosses the imaginary axis) follows from Routh-Hurwitz:
@@ -86,6 +88,11 @@ double shear_rate(const Physics& physics, int k);
 // Real-valued mode cutoffs sqrt(q)/(pi K) and 2 sqrt(q)/(pi K).
 double clustering_cutoff_mode(const Physics& physics);
 double shear_cutoff_mode(const Physics& physics);
+// The same for any closure (HcsLinearisation::clustering_cutoff_mode, shear_cutoff_mode): the
+// real mode number where det A = 0, i.e. p_n (kappa kx^2 + Lambda_T') = p_T Lambda_n, and
+// where eta_xy kx^2 = eps. The dilute closure gives the two above.
+double clustering_cutoff_mode(const Closure& closure);
+double shear_cutoff_mode(const Closure& closure);
 
 // Whether mode k (k and -k are the same mode; k = 0 is never unstable) satisfies pi |k| K <
 // sqrt(q), respectively pi |k| K < 2 sqrt(q). The inequality is decided for the given doubles
@@ -100,6 +107,11 @@ bool shear_mode_unstable(const Physics& physics, int k);
 // respectively pi k K < 2 sqrt(q). Throws std::overflow_error if the count exceeds INT_MAX.
 int clustering_unstable_modes(const Physics& physics);
 int shear_unstable_modes(const Physics& physics);
+// The number of modes k >= 1 below the closure's cutoff mode (k < cutoff in double arithmetic:
+// for the dilute closure it can differ from the double-double count above only when the cutoff
+// is within a rounding error of an integer). Throws std::overflow_error past INT_MAX.
+int clustering_unstable_modes(const Closure& closure);
+int shear_unstable_modes(const Closure& closure);
 
 // exp(A s) initial: the linear evolution of mode k over a collision-clock interval s
 // (s = collision_clock(t, t0) from t = 0). Padé scaling-and-squaring matrix exponential, which

@@ -12,6 +12,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/lagrangian_operator.hpp"
+#include "hydro/linear_stability.hpp"
 #include "hydro/time_series.hpp"
 #include "support/runge_kutta.hpp"
 
@@ -93,9 +94,15 @@ TEST(DiluteClosure, AdiabatIsTProportionalToN) {
   EXPECT_NEAR(adiabat(dilute, 1.5, 0.4, 3.0), 0.8, 1e-11);
 }
 
+// Three parameter sets; the area fraction (read by "enskog" only) keeps phi0 n below freezing
+// at the densest test point n = 40 (phi up to 0.4; tests/test_enskog_closure.cpp goes to 0.6),
+// and set 1 cools with the exact 1 - r^2.
 ClosureParameters parameter_set(int i) {
   const Physics sets[] = {{4e-4, 0.01}, {0.05, 0.2}, {1e-3, 1e-4}};
-  return {sets[i], {}};
+  const double area_fractions[] = {0.01, 0.005, 0.002};
+  return {sets[i],
+          {{"area_fraction", area_fractions[i]}},
+          i == 1 ? CoolingRate::exact : CoolingRate::small_q};
 }
 
 class EveryClosure : public ::testing::TestWithParam<std::tuple<std::string, int>> {
@@ -183,6 +190,20 @@ TEST_P(EveryClosure, HcsLinearisationIsTheClosureAtNEqualsOneAndTEqualsOne) {
 INSTANTIATE_TEST_SUITE_P(Registered, EveryClosure,
                          ::testing::Combine(::testing::ValuesIn(closure_names()),
                                             ::testing::Values(0, 1, 2)));
+
+TEST_P(EveryClosure, ModeCountsAreTheSignsOfTheDispersionRelation) {
+  // Below the clustering cutoff det A > 0 (one real growing rate and two decaying ones), above
+  // it det A < 0; below the
+  // shear cutoff the shear rate is positive. Checked at the last unstable and first stable mode.
+  const int clustering = clustering_unstable_modes(*closure);
+  const int shear = shear_unstable_modes(*closure);
+  ASSERT_GT(clustering, 0);
+  EXPECT_GT(hcs_linear_operator(*closure, clustering).determinant().real(), 0.0);
+  EXPECT_LT(hcs_linear_operator(*closure, clustering + 1).determinant().real(), 0.0);
+  EXPECT_GT(hcs_modes(*closure, clustering)[0].rate.real(), 0.0);
+  EXPECT_GT(shear_rate(*closure, shear), 0.0);
+  EXPECT_LT(shear_rate(*closure, shear + 1), 0.0);
+}
 
 TEST(ClosureRegistry, NamesTheDiluteClosureAndRejectsUnknownNames) {
   EXPECT_EQ(make_closure("dilute", {Physics{4e-4, 0.01}, {}})->name(), "dilute");

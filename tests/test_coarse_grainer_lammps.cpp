@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/coarse_grainer.hpp"
 #include "md_bridge/contact_model.hpp"
@@ -20,7 +21,8 @@ namespace {
 TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
   const ParticleScene scene = scene_from_particles(3000, 0.1, 30.0, 0.9);
   const auto single_mode = hydro::find_initial_condition("single_mode")
-                               .generate({{"velocity_amplitude", -0.3}, {"mode", 1LL}}, {});
+                               .generate({{"velocity_amplitude", -0.3}, {"mode", 1LL}},
+                                         hydro::DiluteClosure(hydro::Physics{}));
   const auto sample = sample_particles(scene, single_mode, 3);
   const double lx = scene.box_length, ly = scene.box_width;
   const int bins = 25;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "app/case_schema.hpp"
+#include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
@@ -127,8 +128,9 @@ TEST(InitialConditionRegistry, RandomModesAreReproducibleFromTheSeed) {
   const ParameterSet a = {{"random_modes", 5LL}, {"random_amplitude", 1e-2}, {"seed", 4LL}};
   ParameterSet b = a;
   b.set("seed", 5LL);
-  const auto fa = random_modes.generate(a, {}), fa2 = random_modes.generate(a, {});
-  const auto fb = random_modes.generate(b, {});
+  const auto fa = random_modes.generate(a, DiluteClosure(Physics{})),
+             fa2 = random_modes.generate(a, DiluteClosure(Physics{}));
+  const auto fb = random_modes.generate(b, DiluteClosure(Physics{}));
   EXPECT_EQ(fa.n(0.17), fa2.n(0.17));
   EXPECT_NE(fa.n(0.17), fb.n(0.17));
   // Five modes of amplitude <= 1e-2 each.

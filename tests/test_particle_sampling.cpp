@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/particle_scene.hpp"
@@ -80,9 +81,9 @@ TEST(ParticleSampler, UniformGasHasNoOverlapsAndTheRightTemperatureAndMomentum) 
 
 TEST(ParticleSampler, FollowsTheDensityAndVelocityProfile) {
   const ParticleScene s = scene_from_particles(20000, 0.05, 20.0, 0.9);
-  const auto f =
-      hydro::find_initial_condition("random_modes")
-          .generate({{"random_modes", 3LL}, {"random_amplitude", 0.2}, {"seed", 1LL}}, {});
+  const auto f = hydro::find_initial_condition("random_modes")
+                     .generate({{"random_modes", 3LL}, {"random_amplitude", 0.2}, {"seed", 1LL}},
+                               hydro::DiluteClosure(hydro::Physics{}));
   const auto sample = sample_particles(s, f, 11);
   const int bins = 20;
   std::vector<double> count(bins, 0.0), vsum(bins, 0.0);
