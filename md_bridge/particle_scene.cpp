@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "hydro/enskog_factors.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::md {
@@ -51,7 +52,7 @@ ParticleScene scene_from_particles(long long particles, double area_fraction, do
 }
 
 double enskog_chi(double phi) {
-  return (1.0 - 7.0 * phi / 16.0) / ((1.0 - phi) * (1.0 - phi));
+  return hydro::enskog::chi(phi);
 }
 
 double haff_time_md(const ParticleScene& s, double chi) {

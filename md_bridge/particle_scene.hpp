@@ -42,7 +42,7 @@ ParticleScene scene_from_particles(long long particles, double area_fraction, do
                                    double restitution);
 
 // Enskog pair correlation at contact for hard disks, Henderson's form
-// chi(phi) = (1 - 7 phi / 16) / (1 - phi)^2.
+// chi(phi) = (1 - 7 phi / 16) / (1 - phi)^2 (the hydro's, hydro/enskog_factors.hpp).
 double enskog_chi(double area_fraction);
 
 // Haff time t0 (MD units) of a homogeneous gas of smooth inelastic disks: the cooling rate
