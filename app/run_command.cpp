@@ -97,15 +97,22 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
 
 // The particle files (particles*.h5) of a run whose frames were written beside its
 // checkpoints, hard-linked into the staging folder (the checkpoint keeps its own link until the
-// run is complete).
-void link_particle_files(const fs::path& from, const fs::path& to) {
-  for (const auto& entry : fs::directory_iterator(from)) {
+// run is complete). False if one could not be put there (it then stays with the checkpoints).
+bool link_particle_files(const fs::path& from, const fs::path& to, spdlog::logger& log) {
+  bool all = true;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(from, error)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("particles", 0) != 0 || entry.path().extension() != ".h5") continue;
-    std::error_code error;
     fs::create_hard_link(entry.path(), to / name, error);
-    if (error) fs::copy_file(entry.path(), to / name, fs::copy_options::overwrite_existing);
+    if (error) fs::copy_file(entry.path(), to / name, fs::copy_options::overwrite_existing, error);
+    if (error) {
+      log.warn("cannot put {} beside the outputs ({}); it stays in {}", name, error.message(),
+               from.string());
+      all = false;
+    }
   }
+  return all;
 }
 
 // The continuum engine with a progress line every progress_seconds and its throughput.
@@ -477,7 +484,8 @@ int run_command(const RunOptions& options) {
   }
   if (!writer) return interrupted ? interrupted_exit_code() : exit_code;
   folder->commit_at_exit(false);
-  if (frames_in_checkpoints) link_particle_files(checkpoint_folder(dir), work);
+  const bool frames_linked =
+      !frames_in_checkpoints || link_particle_files(checkpoint_folder(dir), work, *log);
   const bool checkpointed_run = summary.contains("checkpoint");
   if (checkpointed_run && (interrupted || exit_code != 0)) {
     log->info("the checkpoint is kept in {}; `granvv resume {}` continues the run",
@@ -488,7 +496,7 @@ int run_command(const RunOptions& options) {
   const int finished =
       finish_outputs(*folder, summary, *log, interrupted, options.report, exit_code);
   // A complete result no longer needs its checkpoints.
-  if (checkpointed_run && finished == 0 && !interrupted) remove_checkpoints(dir);
+  if (checkpointed_run && finished == 0 && !interrupted && frames_linked) remove_checkpoints(dir);
   return finished;
 }
 

@@ -11,6 +11,7 @@ tests mount a small tmpfs and run only as root; otherwise they are skipped. Runs
 64-cell hydro, 400 disks), so the whole file takes well under a minute on an idle core.
 """
 import json
+import math
 import os
 import shutil
 import signal
@@ -501,16 +502,27 @@ class Resume(FolderState):
         self.assertGreater(c["resumed_t"], 0.0)
         self.assertNotIn("checkpoint", s)
         self.assertFalse((d / ".granvv-checkpoint").exists())
-        # Member 0 is the saved result, bit for bit. Member 1 continued from its state: before it
-        # the same samples, after it the same run up to the O(dt) change of the contacts open at
-        # the restart (tests/test_md_run.cpp, ARunContinuedFromItsCheckpoint...): 1e-4 of T.
+        # Member 0 is the saved result, bit for bit. Member 1 continued from its state: the
+        # samples before it are the saved ones, bit for bit; after it the restart changes the
+        # contacts open at that moment by O(dt) (tests/test_md_run.cpp,
+        # ARunContinuedFromItsCheckpoint...), and the chaotic collisions amplify that, the more
+        # the earlier the checkpoint fell (measured 1e-5 to 7e-3 here). What must hold is the
+        # statistics: the continued member stays within the thermal noise of one member's box
+        # temperature, sqrt(2/N) = 7 % for these 400 disks, and the Haff fit within 3 standard
+        # errors of the uninterrupted one.
+        with h5py.File(whole / "results.h5", "r") as f:
+            times = f["md/timeseries/t"][()]
+        before = times < c["resumed_t"] + 1e-9
         for name in ("T", "energy_total"):
             a, b = self.members(whole, name), self.members(d, name)
             self.assertEqual(a.shape, b.shape)
             self.assertTrue((a[0] == b[0]).all(), name)
-            self.assertLess(abs(b[1] / a[1] - 1).max(), 1e-4, name)
-        self.assertAlmostEqual(s["md"]["haff_t0_measured"] / summary(whole)["md"]["haff_t0_measured"],
-                               1.0, delta=1e-4)
+            self.assertTrue((a[1][before] == b[1][before]).all(), name)
+        a, b = self.members(whole, "T"), self.members(d, "T")
+        self.assertLess(abs(b[1] / a[1] - 1).max(), math.sqrt(2 / 400))
+        mw, md = summary(whole)["md"], s["md"]
+        self.assertLess(abs(md["haff_t0_measured"] - mw["haff_t0_measured"]),
+                        3 * math.hypot(md["haff_t0_measured_error"], mw["haff_t0_measured_error"]))
         # The particle frames of the resumed member: the same steps as the uninterrupted ones.
         for f in ("particles_m0.h5", "particles_m1.h5"):
             with h5py.File(whole / f, "r") as a, h5py.File(d / f, "r") as b:
