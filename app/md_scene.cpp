@@ -282,8 +282,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
           checkpoints));
       if (saving) {  // the finished member, and the engine's totals after it
         md::MdRunState done;
-        done.engine = engine.save_state();
-        done.engine.particles = {};
+        done.engine = engine.save_state(false);
         done.so_far = out.runs.back();
         int rank = 0;
         MPI_Comm_rank(engine.comm(), &rank);

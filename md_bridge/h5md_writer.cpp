@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "fields/hdf5_datasets.hpp"
 #include "md_bridge/particle_scene.hpp"
 
 namespace granvv::md {
@@ -257,15 +258,6 @@ std::vector<std::int64_t> read_steps(const H5::Group& element) {
   return steps;
 }
 
-std::vector<double> read_column(const H5::Group& element, const std::string& name) {
-  const H5::DataSet ds = element.openDataSet(name);
-  hsize_t rows = 0;
-  ds.getSpace().getSimpleExtentDims(&rows);
-  std::vector<double> values(rows);
-  if (rows > 0) ds.read(values.data(), H5::PredType::NATIVE_DOUBLE);
-  return values;
-}
-
 // Row `row` of a [frames][N][2] value dataset, as xyz triplets with z = 0.
 std::vector<double> read_frame(const H5::DataSet& value, hsize_t row, hsize_t n) {
   std::vector<double> xy(2 * n), xyz(3 * n, 0.0);
@@ -297,7 +289,7 @@ H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_ste
     const H5::Group velocity = old.openGroup("particles/all/velocity");
     const H5::DataSet x = position.openDataSet("value"), v = velocity.openDataSet("value");
     const std::vector<std::int64_t> steps = read_steps(position);
-    const std::vector<double> times = read_column(position, "time");
+    const std::vector<double> times = h5::read_doubles(position, "time").values;
     for (std::size_t row = 0; row < steps.size() && steps[row] <= last_step; ++row) {
       writer.append_particles(steps[row], times[row], read_frame(x, row, n_particles),
                               read_frame(v, row, n_particles));
@@ -307,8 +299,8 @@ H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_ste
       const std::string name = observables.getObjnameByIdx(k);
       const H5::Group element = observables.openGroup(name);
       const std::vector<std::int64_t> obs_steps = read_steps(element);
-      const std::vector<double> obs_times = read_column(element, "time");
-      const std::vector<double> values = read_column(element, "value");
+      const std::vector<double> obs_times = h5::read_doubles(element, "time").values;
+      const std::vector<double> values = h5::read_doubles(element, "value").values;
       for (std::size_t row = 0; row < obs_steps.size() && obs_steps[row] <= last_step; ++row) {
         writer.append_observable(name, obs_steps[row], obs_times[row], values[row]);
       }

@@ -109,9 +109,9 @@ void LammpsEngine::set_up(const ParticleSample& sample) {
   ++runs_;
 }
 
-EngineState LammpsEngine::save_state() {
+EngineState LammpsEngine::save_state(bool with_particles) {
   EngineState state;
-  if (lmp_) state.particles = gather_frame();
+  if (lmp_ && with_particles) state.particles = gather_frame();
   state.numbers = {{"t", t_},
                    {"steps", double(steps_)},
                    {"speed", speed_},

@@ -65,7 +65,7 @@ class LammpsEngine final : public ParticleEngine {
   // Numbers: t, steps, speed (the contact's), changes (this run's); runs, atom_steps,
   // all_changes, first_initial_speed, first_final_speed, wall_seconds (the totals). The contacts
   // are made again from their speeds (contact_for_speed is deterministic).
-  EngineState save_state() override;
+  EngineState save_state(bool with_particles) override;
   void restore_state(const EngineState& state) override;
   EngineCost cost() const override;
   // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of

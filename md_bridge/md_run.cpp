@@ -134,7 +134,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     state.t = t;
     state.next_output = next_output;
     state.next_frame = next_frame;
-    state.engine = engine.save_state();
+    state.engine = engine.save_state(true);
     state.so_far = result;
     state.so_far.status = "running";
     state.so_far.wall_seconds = wall();

@@ -110,9 +110,10 @@ class ParticleEngine {
   // Engine-specific numbers of the current state, taken at every time-series sample.
   virtual EngineValues series_values() const { return {}; }
 
-  // The state now (collective; the same on every rank): after set_up and any advance_to, or
-  // with no particles between runs.
-  virtual EngineState save_state() = 0;
+  // The state now (collective; the same on every rank): after set_up and any advance_to. Without
+  // particles (with_particles false, or between runs) it holds the totals only, gathering
+  // nothing.
+  virtual EngineState save_state(bool with_particles) = 0;
   // Continues from a saved state (collective): the run in progress with its particles, or only
   // the totals. Throws std::invalid_argument for a state this engine did not save.
   virtual void restore_state(const EngineState& state) = 0;
