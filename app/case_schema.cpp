@@ -197,6 +197,20 @@ std::vector<KeySpec> rows_without_initial() {
        "a field agrees at a time when at least this fraction of its bins agree"},
       {"compare.density_modes", kInteger, 0, closed_closed(0, 1e4),
        "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
+
+      // [atlas]: what `granvv atlas` judges and the grid of the hydro's cost knobs
+      // (docs/atlas.md). Empty lists take the atlas's defaults around the case's own setting.
+      {"atlas.observables", kString, "scene",
+       any_value(),
+       "observables judged, comma-separated; \"scene\" = thermal_energy for homogeneous "
+       "cooling, else crossing_times, thermal_energy, kinetic_energy, field_n, field_v_x, "
+       "field_T"},
+      {"atlas.cells", kIntegers, kEmpty, increasing(closed_closed(4, kMaxCells)),
+       "hydro cells of the grid ([] = hydro.cells times 1/4, 1/2, 1, 2, 4, 8)"},
+      {"atlas.step_factors", kReals, kEmpty, increasing(open_closed(0, 64)),
+       "factors on hydro.cfl, hydro.dt_max and hydro.max_compression ([] = 1/4, 1/2, 1, 2, 4)"},
+      {"atlas.bins", kInteger, 64, closed_closed(4, 4096),
+       "bins on which every model's fields are compared"},
   };
 }
 

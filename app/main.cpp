@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/atlas_command.hpp"
 #include "app/case_catalog.hpp"
 #include "app/case_config.hpp"
 #include "app/md_checkpoint.hpp"
@@ -57,6 +58,23 @@ int main(int argc, char** argv) {
       ->add_option("--power-r-min", sweep.power_r_min,
                    "fit the power of (1 - r^2) over restitutions >= this")
       ->check(CLI::Range(0.0, 1.0));
+
+  AtlasOptions atlas;
+  auto* atlas_cmd = app.add_subcommand(
+      "atlas",
+      "every model of a scene against cost: work-precision, stability, cheapest adequate model");
+  atlas_cmd->add_option("case", atlas.case_name, "case file or scene name from `granvv list`")
+      ->required();
+  atlas_cmd->add_option("--set", atlas.sets, "override a case key (TOML value)")
+      ->allow_extra_args(false);
+  atlas_cmd->add_option("--tolerance", atlas.tolerance,
+                        "relative error a model must meet on every observable (default 1e-2)");
+  atlas_cmd->add_option("--budget", atlas.budget, "wall seconds for the runs (default 300)");
+  atlas_cmd->add_option("--jobs", atlas.jobs, "runs at a time (default: the core count)");
+  atlas_cmd->add_option("--out", atlas.out_dir, "output folder (default out/<case>-atlas)");
+  atlas_cmd->add_flag("--quiet", atlas.quiet, "no progress lines on stderr");
+  bool atlas_no_report = false;
+  atlas_cmd->add_flag("--no-report", atlas_no_report, "skip atlas.html");
 
   auto* list_cmd = app.add_subcommand("list", "list the scenes in cases/");
 
@@ -115,6 +133,10 @@ int main(int argc, char** argv) {
   if (*sweep_cmd) {
     sweep.report = !sweep_no_report;
     return sweep_command(sweep);
+  }
+  if (*atlas_cmd) {
+    atlas.report = !atlas_no_report;
+    return atlas_command(atlas);
   }
   if (*list_cmd) {
     std::vector<SceneListing> scenes;

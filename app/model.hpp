@@ -28,11 +28,13 @@ std::unique_ptr<Model> make_haff_model(const hydro::Physics& physics, std::vecto
                                        int bins);
 
 // Flow by inertia (paper Eq. 5) of the case's initial fields on `bins` bins, at the given times
-// before 0.999 of its singularity time (there its density is infinite in one bin). Observable
-// singularity_time. Throws ConfigError if the initial velocity has no flow-by-inertia reference.
+// before 0.999 of its singularity time (there its density is infinite in one bin). Observables
+// singularity_time and crossing_time_n<level> of its peak density for each of crossing_levels
+// (hydro/inertia_crossing.hpp). Throws ConfigError if the initial velocity has no
+// flow-by-inertia reference.
 std::unique_ptr<Model> make_inertia_model(const hydro::InitialParameters& initial,
                                           const hydro::Physics& physics, std::vector<double> times,
-                                          int bins);
+                                          int bins, std::vector<double> crossing_levels = {});
 
 // The hydro with its closure. Fields on `bins` bins (bin_lagrangian_state) or, for bins = 0, on
 // its own cells. Observables: haff_t0 (of its closure), t_final, singularity_time (the 1/n_max
@@ -52,6 +54,8 @@ class HydroModel : public Model {
   HydroOutcome outcome_;
 };
 fields::ModelResult hydro_result(const HydroScene& scene, const HydroOutcome& outcome, int bins);
+// "crossing_time_n10": the observable of the time the peak density first reaches level.
+std::string crossing_time_name(double level);
 
 // The particles with their engine, an ensemble of seeds. Fields: the ensemble mean on the
 // particles' bins with the error of that mean (compare::ensemble_mean_fields). Observable haff_t0

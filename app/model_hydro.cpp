@@ -20,6 +20,12 @@ fields::ModelResult HydroModel::run() {
   return hydro_result(scene_, outcome_, bins_);
 }
 
+std::string crossing_time_name(double level) {
+  char name[64];
+  std::snprintf(name, sizeof name, "crossing_time_n%g", level);
+  return name;
+}
+
 fields::ModelResult hydro_result(const HydroScene& scene, const HydroOutcome& out, int bins) {
   fields::ModelResult r;
   r.model = "hydro/" + scene.closure;
@@ -42,9 +48,7 @@ fields::ModelResult hydro_result(const HydroScene& scene, const HydroOutcome& ou
     r.observables.push_back({"singularity_time", out.singularity->tau});
   }
   for (const auto& [level, t] : out.run.crossing_times) {
-    char name[64];
-    std::snprintf(name, sizeof name, "crossing_time_n%g", level);
-    r.observables.push_back({name, t});
+    r.observables.push_back({crossing_time_name(level), t});
   }
   r.cost = {out.run.wall_seconds, double(out.run.steps) * scene.cells, "cell_steps"};
   return r;

@@ -6,6 +6,7 @@
 #include "compare/binned_fields.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
+#include "hydro/inertia_crossing.hpp"
 
 namespace granvv::app {
 namespace {
@@ -56,8 +57,14 @@ class HaffModel : public Model {
 
 class InertiaModel : public Model {
  public:
-  InertiaModel(hydro::InitialFields initial, double tau, std::vector<double> times, int bins)
-      : initial_(std::move(initial)), tau_(tau), times_(std::move(times)), bins_(bins) {}
+  InertiaModel(hydro::InitialFields initial, hydro::FlowByInertia flow, std::vector<double> times,
+               int bins, std::vector<double> crossing_levels)
+      : initial_(std::move(initial)),
+        flow_(std::move(flow)),
+        tau_(flow_.singularity_time()),
+        times_(std::move(times)),
+        bins_(bins),
+        crossing_levels_(std::move(crossing_levels)) {}
   std::string name() const override { return "flow_by_inertia"; }
   fields::ModelResult run() override {
     const auto start = std::chrono::steady_clock::now();
@@ -77,14 +84,21 @@ class InertiaModel : public Model {
     r.cost = {seconds_since(start), double(labels) * f.snapshots.size(), "evaluations"};
     r.fields = std::move(f);
     if (std::isfinite(tau_)) r.observables.push_back({"singularity_time", tau_});
+    for (double level : crossing_levels_) {
+      const double t = hydro::inertia_crossing_time(flow_, level);
+      if (std::isfinite(t)) r.observables.push_back({crossing_time_name(level), t});
+    }
+    r.cost.wall_seconds = seconds_since(start);
     return r;
   }
 
  private:
   hydro::InitialFields initial_;
+  hydro::FlowByInertia flow_;
   double tau_;
   std::vector<double> times_;
   int bins_;
+  std::vector<double> crossing_levels_;
 };
 
 }  // namespace
@@ -96,14 +110,15 @@ std::unique_ptr<Model> make_haff_model(const hydro::Physics& physics, std::vecto
 
 std::unique_ptr<Model> make_inertia_model(const hydro::InitialParameters& initial,
                                           const hydro::Physics& physics, std::vector<double> times,
-                                          int bins) {
+                                          int bins, std::vector<double> crossing_levels) {
   const auto reference = hydro::inertia_reference(initial);
   if (!reference) {
     throw ConfigError("initial.type = \"" + initial.type +
                       "\": its initial velocity has no flow-by-inertia reference");
   }
   return std::make_unique<InertiaModel>(hydro::make_initial_fields(initial, physics),
-                                        reference->flow.singularity_time(), std::move(times), bins);
+                                        reference->flow, std::move(times), bins,
+                                        std::move(crossing_levels));
 }
 
 }  // namespace granvv::app

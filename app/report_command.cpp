@@ -38,9 +38,12 @@ int build_report(const std::filesystem::path& dir) {
 int report_command(const std::filesystem::path& dir) {
   for (const auto& note : finish_interrupted_commits(dir)) std::cerr << "granvv: " << note << "\n";
   if (!std::filesystem::is_regular_file(dir / "results.h5") &&
-      !std::filesystem::is_regular_file(dir / "sweep.json")) {
-    std::cerr << "granvv: error: neither " << dir.string() << "/results.h5 nor " << dir.string()
-              << "/sweep.json found; `granvv report DIR` needs the folder of a run or a sweep\n";
+      !std::filesystem::is_regular_file(dir / "sweep.json") &&
+      !std::filesystem::is_regular_file(dir / "atlas.json")) {
+    std::cerr << "granvv: error: none of results.h5, sweep.json, atlas.json found in "
+              << dir.string()
+              << "; `granvv report DIR` needs the folder of a run, a sweep or an "
+                 "atlas\n";
     return 2;
   }
   return build_report(dir);

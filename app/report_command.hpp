@@ -7,7 +7,7 @@ namespace granvv::app {
 int build_report(const std::filesystem::path& dir);
 
 // `granvv report DIR`: finishes a replacement of the outputs that a killed run left half done
-// (app/output_folder.hpp), then builds the report of the run or sweep in DIR. Exit 2 (one line)
-// if DIR holds neither results.h5 nor sweep.json.
+// (app/output_folder.hpp), then builds the page of the run, sweep or atlas in DIR. Exit 2 (one
+// line) if DIR holds none of results.h5, sweep.json and atlas.json.
 int report_command(const std::filesystem::path& dir);
 }  // namespace granvv::app

@@ -274,9 +274,11 @@ def screenshot(driver, path):
 def resolve_report(target):
     path = os.path.abspath(target)
     if os.path.isdir(path):
-        path = os.path.join(path, "report.html")
+        atlas_page = os.path.join(path, "atlas.html")
+        run_page = os.path.join(path, "report.html")
+        path = atlas_page if os.path.isfile(atlas_page) and not os.path.isfile(run_page) else run_page
     if not os.path.isfile(path):
-        raise UsageError(f"no report at {path} (give a run folder or its report.html)")
+        raise UsageError(f"no report at {path} (give a run, sweep or atlas folder, or its page)")
     return os.path.dirname(path), os.path.basename(path)
 
 

@@ -3,9 +3,10 @@
 
     /usr/bin/python3 scripts/report.py DIR [--strict]
 
-Reads DIR/results.h5 (required, unless DIR holds a sweep) and DIR/summary.json (optional), writes the
+Reads DIR/results.h5 (required, unless DIR holds a sweep or an atlas) and DIR/summary.json (optional), writes the
 figures to DIR/figures/*.png and the page to DIR/report.html. A sweep folder (DIR/sweep.json from
-`granvv sweep`, no results.h5) gets a sweep page instead. The work is done by the package
+`granvv sweep`, no results.h5) gets a sweep page instead, and an atlas folder (DIR/atlas.json of
+`granvv atlas`) the page DIR/atlas.html. The work is done by the package
 granvv_report beside this script (see its __init__ for the modules).
 
 Exit status: 0 report written; 1 results.h5 missing or unreadable (one line on
@@ -20,7 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from granvv_report import PROG  # noqa: E402
-from granvv_report.data import ReportError  # noqa: E402
+from granvv_report.data import ReportError, is_atlas_folder  # noqa: E402
 from granvv_report.page import build  # noqa: E402
 
 
@@ -35,7 +36,7 @@ def main(argv=None):
     except ReportError as e:
         print(f"{PROG}: error: {e}", file=sys.stderr)
         return 1
-    out = Path(args.dir) / "report.html"
+    out = Path(args.dir) / ("atlas.html" if is_atlas_folder(args.dir) else "report.html")
     print(f"{PROG}: wrote {out} ({len(figures)} figures, {len(skipped)} not applicable"
           + (f", {len(failed)} FAILED" if failed else "") + ")")
     return 2 if (failed and args.strict) else 0

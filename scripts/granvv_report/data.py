@@ -18,7 +18,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-RESULTS, SUMMARY, SWEEP = "results.h5", "summary.json", "sweep.json"
+RESULTS, SUMMARY, SWEEP, ATLAS = "results.h5", "summary.json", "sweep.json", "atlas.json"
 
 
 class ReportError(Exception):
@@ -421,3 +421,37 @@ def is_sweep_folder(outdir):
     """A sweep folder holds sweep.json and no results.h5."""
     outdir = Path(outdir)
     return not (outdir / RESULTS).exists() and (outdir / SWEEP).is_file()
+
+
+class AtlasRun:
+    """A folder of `granvv atlas`: atlas.json (docs/atlas.md)."""
+
+    def __init__(self, outdir):
+        self.outdir = Path(outdir)
+        self.atlas_path = self.outdir / ATLAS
+        try:
+            with open(self.atlas_path) as fh:
+                self.at = json.load(fh)
+        except (OSError, ValueError) as e:
+            raise ReportError(f"cannot read {self.atlas_path}: {e}")
+        if not isinstance(self.at, dict) or not isinstance(self.at.get("runs"), list):
+            raise ReportError(f"{self.atlas_path} is not a granvv atlas (no runs list)")
+        self.figdir = None
+
+    def atlas(self, *keys):
+        """A value of atlas.json: atlas("recommendation", "model")."""
+        return get(self.at, *keys)
+
+    def runs(self, model=None):
+        """The runs (dicts of atlas.json), of one model if given."""
+        return [r for r in self.at["runs"] if isinstance(r, dict) and (model is None or r.get("model") == model)]
+
+    def models(self):
+        """The models that ran, in ladder order."""
+        return [rung["model"] for rung in self.atlas("ladder") or [] if rung.get("runs")]
+
+
+def is_atlas_folder(outdir):
+    """An atlas folder holds atlas.json and no results.h5."""
+    outdir = Path(outdir)
+    return not (outdir / RESULTS).exists() and (outdir / ATLAS).is_file()

@@ -11,15 +11,16 @@ from pathlib import Path
 import jinja2
 from markupsafe import Markup
 
-from . import figures_compare, figures_hydro, figures_md, figures_sweep  # noqa: F401 - importing registers
-from .data import ReportError, Run, SweepRun, is_sweep_folder
+from . import figures_atlas, figures_compare, figures_hydro, figures_md, figures_sweep  # noqa: F401 - importing registers
+from .data import AtlasRun, ReportError, Run, SweepRun, is_atlas_folder, is_sweep_folder
 from .registry import draw_figures
-from .tables import (compare_section, engine_tables, header_rows, snapshot_table, sweep_tables,
+from .tables import (atlas_tables, compare_section, engine_tables, header_rows, snapshot_table, sweep_tables,
                      sweep_verdicts)
 
 TEMPLATES = Path(__file__).resolve().parent.parent
 RUN_TEMPLATE = "report_template.html"
 SWEEP_TEMPLATE = "sweep_template.html"
+ATLAS_TEMPLATE = "atlas_template.html"
 PAPER = "Efrati, Livne &amp; Meerson, PRL 94, 088001 (2005)"
 
 
@@ -35,8 +36,8 @@ def figure_folder(outdir):
     return figdir
 
 
-def write_page(outdir, template, **fields):
-    """Render template into DIR/report.html: a temporary file, renamed."""
+def write_page(outdir, template, page_name="report.html", **fields):
+    """Render template into DIR/page_name: a temporary file, renamed."""
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES),
                              autoescape=jinja2.select_autoescape(["html"]), undefined=jinja2.StrictUndefined)
     html = env.get_template(template).render(**fields)
@@ -45,7 +46,7 @@ def write_page(outdir, template, **fields):
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(html)
         os.chmod(tmp, 0o644)
-        os.replace(tmp, outdir / "report.html")
+        os.replace(tmp, outdir / page_name)
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
@@ -77,10 +78,30 @@ def build_sweep(outdir, strict=False):
     return figures, skipped, failed
 
 
+def build_atlas(outdir, strict=False):
+    run = AtlasRun(outdir)
+    run.figdir = figure_folder(run.outdir)
+    figures, skipped, failed = draw_figures("atlas", run, run.figdir, strict)
+    rec, ladder, rows, skipped_runs = atlas_tables(run)
+    raw = {k: v for k, v in run.at.items() if k not in ("runs", "stability", "timeline")}
+    write_page(
+        run.outdir, ATLAS_TEMPLATE, page_name="atlas.html",
+        case=run.atlas("case") or run.outdir.name, status=run.atlas("status"),
+        recommendation=rec, ladder=ladder, runs=rows, skipped_runs=skipped_runs,
+        observables=run.atlas("observables") or [], times=run.atlas("times") or [],
+        figures=figures, skipped=skipped, failed=failed, raw=json.dumps(raw, indent=2),
+        generated=generated_at(), source=str(run.atlas_path),
+    )
+    return figures, skipped, failed
+
+
 def build(outdir, strict=False):
-    """Write DIR/report.html and DIR/figures/*.png: a sweep page for a sweep folder, else a run page."""
+    """Write DIR/report.html and DIR/figures/*.png: a sweep page for a sweep folder, an atlas page
+    (DIR/atlas.html) for an atlas folder, else a run page."""
     if is_sweep_folder(outdir):
         return build_sweep(outdir, strict)
+    if is_atlas_folder(outdir):
+        return build_atlas(outdir, strict)
     run = Run(outdir)
     run.figdir = figure_folder(run.outdir)
     ran = {"hydro": run.has_hydro(), "md": run.has_md(), "compare": run.has_compare()}

@@ -27,7 +27,7 @@ from .data import Skip
 from .style import save
 
 # The page sections and the page each belongs to.
-SECTIONS = {"hydro": "run", "md": "run", "compare": "run", "sweep": "sweep"}
+SECTIONS = {"hydro": "run", "md": "run", "compare": "run", "sweep": "sweep", "atlas": "atlas"}
 
 
 @dataclass

@@ -338,3 +338,48 @@ def sweep_tables(run):
         settings.insert(4, ("seeds, ensemble members", Markup("; ".join(
             f"seed {fmt(s)}, ensemble of {fmt(e)}" for s, e in sorted(seeds, key=str)))))
     return rows, fit_rows, settings
+
+
+def _setting_text(s):
+    if not isinstance(s, dict):
+        return "—"
+    if "cells" in s:
+        return f"{s['model']}, {s['cells']} cells, step factor {fmt(s['step_factor'], 3)}"
+    return s.get("model", "—")
+
+
+def atlas_tables(run):
+    """(recommendation rows, ladder rows, run rows, skipped rows) of an atlas page."""
+    rec = run.atlas("recommendation") or {}
+    rec_rows = [("tolerance (relative)", fmt(rec.get("tolerance")))]
+    if rec.get("model"):
+        rec_rows.append(("cheapest adequate model", _setting_text(rec.get("setting"))))
+        cost = rec.get("cost") or {}
+        rec_rows.append(("its cost", f"{fmt(cost.get('wall_seconds'), 3)} s, {fmt(cost.get('work'), 3)} "
+                                     f"{cost.get('work_unit', '')}"))
+        for k, v in sorted((rec.get("error") or {}).items()):
+            rec_rows.append((f"its error: {k}", fmt(v, 3)))
+        nxt = rec.get("next_rung")
+        if isinstance(nxt, dict):
+            rec_rows.append(("next rung up", _setting_text(nxt.get("setting")) + ("" if nxt.get("adequate")
+                             else " (not adequate either)")))
+            rec_rows.append(("its cost", f"{fmt((nxt.get('cost') or {}).get('wall_seconds'), 3)} s"))
+        else:
+            rec_rows.append(("next rung up", "none ran"))
+    else:
+        rec_rows.append(("cheapest adequate model", rec.get("reason", "none")))
+    ladder = [(r.get("model"), "runs" if r.get("runs") else "skipped: " + str(r.get("reason")))
+              for r in run.atlas("ladder") or []]
+    names = run.atlas("observables") or []
+    rows = []
+    for r in sorted(run.runs(), key=lambda r: (r.get("model", ""), r.get("cells") or 0, r.get("step_factor") or 0)):
+        errs = r.get("model_error") or {}
+        worst = max(errs.values()) if errs else None
+        num = r.get("numerical_error") or {}
+        rows.append([r.get("model"), r.get("cells", "—"), fmt(r.get("step_factor"), 3) if "step_factor" in r else "—",
+                     r.get("status"), fmt(r.get("wall_seconds"), 3), fmt(r.get("work"), 3),
+                     fmt(max(num.values()), 3) if num else "—", fmt(worst, 3) if worst is not None else "—",
+                     f"{len(errs)}/{len(names)}", "yes" if r.get("over_resolved") else "",
+                     ", ".join(r.get("pareto") or [])])
+    skipped = [(_setting_text(s.get("setting")), s.get("reason")) for s in run.atlas("skipped") or []]
+    return rec_rows, ladder, rows, skipped

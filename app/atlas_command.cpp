@@ -1,0 +1,682 @@
+#include "app/atlas_command.hpp"
+
+#include <H5Cpp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "app/atlas_analysis.hpp"
+#include "app/atlas_runs.hpp"
+#include "app/atomic_file.hpp"
+#include "app/case_config.hpp"
+#include "app/hydro_scene.hpp"
+#include "app/interruption.hpp"
+#include "app/json_numbers.hpp"
+#include "app/model.hpp"
+#include "app/output_folder.hpp"
+#include "app/report_command.hpp"
+#include "app/summary.hpp"
+#include "atlas/recommendation.hpp"
+#include "atlas/stability_search.hpp"
+#include "atlas/work_precision.hpp"
+#include "fields/hdf5_datasets.hpp"
+#include "hydro/closure.hpp"
+
+namespace granvv::app {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The default grid around the case's own setting (docs/atlas.md): cells times these, and these
+// factors on the step bounds. The finest corner is each hydro's converged reference.
+const std::vector<double> kCellFactors = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0};
+const std::vector<double> kStepFactors = {0.25, 0.5, 1.0, 2.0, 4.0};
+// Stability boundaries: the knob is pushed by this factor at most kPushes times from the case's
+// own setting, then the first failure is bisected kRefinements times on a log scale.
+constexpr int kPushes = 6, kRefinements = 2;
+// A run is over-resolved when its numerical error is below this fraction of its model error:
+// refining it further cannot bring it closer to the richest model.
+constexpr double kOverResolved = 0.1;
+// The ladder from the poorest model to the richest; a scene runs the ones that apply.
+const std::vector<std::string> kLadder = {"haff_ode", "flow_by_inertia", "hydro/dilute",
+                                          "hydro/enskog"};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool is_hydro(const std::string& model) {
+  return model.rfind("hydro/", 0) == 0;
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> items;
+  std::string item;
+  for (char c : s + ",") {
+    if (c == ',') {
+      if (!item.empty()) items.push_back(item);
+      item.clear();
+    } else if (c != ' ') {
+      item += c;
+    }
+  }
+  return items;
+}
+
+// atlas.observables, expanded: "scene" by the scene's type, "crossing_times" into one name per
+// crossing level below the stop density.
+std::vector<std::string> judged_observables(const CaseConfig& c, bool homogeneous,
+                                            const std::vector<double>& levels) {
+  const std::string text = c.string("atlas.observables");
+  std::vector<std::string> asked = split_list(text);
+  if (asked.empty()) {
+    throw ConfigError(c.origin("atlas.observables") + ": atlas.observables = \"" + text +
+                      "\": give \"scene\" or one or more of " +
+                      join(atlas_observable_names(), ", "));
+  }
+  if (asked == std::vector<std::string>{"scene"}) {
+    asked = homogeneous ? std::vector<std::string>{"thermal_energy"} : atlas_observable_names();
+  }
+  std::vector<std::string> names;
+  for (const auto& a : asked) {
+    const auto& allowed = atlas_observable_names();
+    if (std::find(allowed.begin(), allowed.end(), a) == allowed.end()) {
+      throw ConfigError(c.origin("atlas.observables") + ": atlas.observables = \"" + text +
+                        "\": '" + a + "' is not an observable; allowed: scene, or " +
+                        join(allowed, ", "));
+    }
+    if (a == "crossing_times") {
+      for (double level : levels) names.push_back(crossing_time_name(level));
+    } else {
+      names.push_back(a);
+    }
+  }
+  return names;
+}
+
+struct LadderRung {
+  std::string model;
+  std::string skipped;  // why it does not apply (empty: it runs)
+};
+
+std::vector<LadderRung> ladder_of(const AtlasScene& scene, const std::string& initial_type) {
+  std::vector<LadderRung> rungs;
+  for (const auto& model : kLadder) {
+    LadderRung r{model, ""};
+    if (model == "haff_ode" && initial_type != "uniform") {
+      r.skipped = "not homogeneous cooling (initial.type = " + initial_type +
+                  "); run for the record, it cannot follow the fields";
+    }
+    if (model == "flow_by_inertia" && !scene.has_inertia_reference) {
+      r.skipped = "the initial velocity has no flow-by-inertia reference";
+    }
+    if (model == "hydro/enskog" && !(scene.area_fraction > 0.0)) {
+      r.skipped = "needs physics.area_fraction > 0 (the area fraction of the disks)";
+    }
+    rungs.push_back(r);
+  }
+  // The Haff ODE is cheap: it is run on every scene, so that the atlas shows how far it is.
+  rungs.front().skipped.clear();
+  rungs.push_back({"particles/lammps", scene.particles
+                                           ? "particle rungs are not in this version of the atlas"
+                                           : "md.enabled = false"});
+  return rungs;
+}
+
+struct Grid {
+  std::vector<int> cells;
+  std::vector<double> factors;
+};
+
+Grid grid_of(const CaseConfig& c, int case_cells) {
+  Grid g;
+  for (long long n : c.integers("atlas.cells")) g.cells.push_back(int(n));
+  g.factors = c.reals("atlas.step_factors");
+  if (g.cells.empty()) {
+    for (double f : kCellFactors) {
+      const int n = std::max(4, int(std::lround(case_cells * f)));
+      if (g.cells.empty() || n > g.cells.back()) g.cells.push_back(n);
+    }
+  }
+  if (g.factors.empty()) g.factors = kStepFactors;
+  return g;
+}
+
+// A run's estimated wall seconds from the pilot (the case's own setting): the work is cells
+// times steps, and the steps grow as the cells where the sound limit binds and as 1/factor.
+double estimate(const AtlasSetting& s, const AtlasRun& pilot, int case_cells) {
+  if (!is_hydro(s.model)) return 0.0;
+  const double c = double(s.cells) / case_cells;
+  return std::max(pilot.cost.wall_seconds, 1e-3) * std::max(c * c, c) / s.step_factor;
+}
+
+json setting_json(const AtlasSetting& s) {
+  json j = {{"model", s.model}};
+  if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
+  return j;
+}
+
+json errors_json(const std::map<std::string, double>& e) {
+  json j = json::object();
+  for (const auto& [k, v] : e) j[k] = v;
+  return j;
+}
+
+double largest(const std::map<std::string, double>& e) {
+  double m = 0.0;
+  for (const auto& [k, v] : e) m = std::max(m, v);
+  return e.empty() ? kNaN : m;
+}
+
+// Runs the settings with up to `jobs` at a time, each taken from the cache when it is there,
+// with a progress line per finished run.
+class AtlasRunner {
+ public:
+  AtlasRunner(const AtlasScene& scene, fs::path cache, int jobs, bool quiet)
+      : scene_(scene), cache_(std::move(cache)), jobs_(jobs), quiet_(quiet) {}
+
+  std::vector<AtlasRun> run(const std::vector<AtlasSetting>& settings,
+                            const std::vector<double>& estimates) {
+    std::vector<AtlasRun> runs(settings.size());
+    std::atomic<std::size_t> next{0};
+    double left = 0.0;
+    for (double e : estimates) left += e;
+    auto work = [&] {
+      for (std::size_t i = next++; i < settings.size(); i = next++) {
+        if (interruption_signal()) return;
+        runs[i] = run_atlas_setting(scene_, settings[i], cache_);
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++done_;
+        made_ += !runs[i].cached && runs[i].status != "refused";
+        left -= estimates[i];
+        spent_ += runs[i].cached ? 0.0 : runs[i].cost.wall_seconds;
+        if (!quiet_) {
+          std::fprintf(stderr, "atlas: %d runs done, %zu left, ETA %.0f s (%s: %s, %.3g s%s)\n",
+                       done_, settings.size() - std::min(settings.size(), next.load()),
+                       std::max(0.0, left) / jobs_, describe(settings[i]).c_str(),
+                       runs[i].status.c_str(), runs[i].cost.wall_seconds,
+                       runs[i].cached ? ", cached" : "");
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int j = 0; j < std::min<int>(jobs_, int(settings.size())); ++j) pool.emplace_back(work);
+    for (auto& t : pool) t.join();
+    return runs;
+  }
+  AtlasRun run_one(const AtlasSetting& s) { return run({s}, {0.0}).front(); }
+  double spent() const { return spent_; }
+  int made() const { return made_; }
+  int done() const { return done_; }
+
+ private:
+  const AtlasScene& scene_;
+  fs::path cache_;
+  int jobs_;
+  bool quiet_;
+  std::mutex mutex_;
+  int done_ = 0, made_ = 0;
+  double spent_ = 0.0;
+};
+
+void write_atlas_h5(const fs::path& file, const std::vector<AtlasRun>& runs,
+                    const std::vector<std::map<std::string, double>>& numerical,
+                    const std::vector<std::map<std::string, double>>& model,
+                    const std::vector<std::string>& observables) {
+  const fs::path tmp = file.string() + ".partial";
+  {
+    H5::H5File f(tmp.string(), H5F_ACC_TRUNC);
+    H5::Group g = f.createGroup("runs");
+    std::vector<std::string> names, status;
+    std::vector<double> cells, factor, wall, work;
+    for (const auto& r : runs) {
+      names.push_back(r.setting.model), status.push_back(r.status);
+      cells.push_back(r.setting.cells), factor.push_back(r.setting.step_factor);
+      wall.push_back(r.cost.wall_seconds), work.push_back(r.cost.work);
+    }
+    h5::write_strings(g, "model", names);
+    h5::write_strings(g, "status", status);
+    h5::write_vector(g, "cells", cells);
+    h5::write_vector(g, "step_factor", factor);
+    h5::write_vector(g, "wall_seconds", wall);
+    h5::write_vector(g, "work", work);
+    h5::write_attribute(g, "missing", "NaN: the run does not give the observable");
+    for (const auto& [group_name, errors] :
+         {std::pair{"numerical_error", &numerical}, std::pair{"model_error", &model}}) {
+      H5::Group e = g.createGroup(group_name);
+      for (const auto& name : observables) {
+        std::vector<double> v;
+        for (const auto& m : *errors) v.push_back(m.count(name) ? m.at(name) : kNaN);
+        h5::write_vector(e, name, v);
+      }
+    }
+  }
+  fs::rename(tmp, file);
+}
+
+}  // namespace
+
+int atlas_command(const AtlasOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  // 1. The scene, validated before anything runs.
+  AtlasScene scene;
+  std::vector<std::string> observables;
+  std::vector<LadderRung> ladder;
+  Grid grid;
+  std::string initial_type;
+  double stop_density = 0.0;
+  try {
+    if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance)) {
+      throw ConfigError("--tolerance " + format_real(options.tolerance) +
+                        ": must be a relative error > 0, e.g. 1e-2");
+    }
+    if (!(options.budget > 0.0) || !std::isfinite(options.budget)) {
+      throw ConfigError("--budget " + format_real(options.budget) +
+                        ": must be > 0 wall seconds, e.g. 300");
+    }
+    if (options.jobs < 0) {
+      throw ConfigError("--jobs " + std::to_string(options.jobs) +
+                        ": must be >= 1 (0 or absent = the core count)");
+    }
+    scene.source = locate_case(options.case_name);
+    scene.sets = options.sets;
+    const CaseConfig config =
+        CaseConfig::from_string(scene.source.text, scene.source.origin, scene.sets);
+    HydroScene hydro = hydro_scene_from(config);
+    scene.name = config.name();
+    scene.particles = config.boolean("md.enabled");
+    scene.bins = config.int_value("atlas.bins");
+    scene.case_cells = hydro.cells;
+    scene.case_cfl = hydro.control.time_step.cfl;
+    scene.case_dt_max = hydro.control.time_step.dt_max;
+    scene.case_max_compression = hydro.control.time_step.max_compression;
+    scene.area_fraction = hydro.area_fraction;
+    initial_type = hydro.initial.type;
+    scene.has_inertia_reference = hydro::inertia_reference(hydro.initial).has_value();
+    stop_density = hydro.control.stop_density;
+    for (double level : hydro.control.crossing_densities) {
+      if (level < stop_density && initial_type != "uniform") scene.crossing_levels.push_back(level);
+    }
+    observables = judged_observables(config, initial_type == "uniform", scene.crossing_levels);
+    grid = grid_of(config, scene.case_cells);
+    ladder = ladder_of(scene, initial_type);
+    // The compared times: the hydro's own output times, or those of a particle scene.
+    AtlasSetting probe{"hydro/" + hydro.closure, scene.case_cells, 1.0};
+    const CaseConfig first = CaseConfig::from_string(scene.source.text, scene.source.origin,
+                                                     setting_overrides(scene, probe));
+    const HydroScene aligned = atlas_hydro_scene(first, scene);
+    scene.times = aligned.control.output_times;
+    if (scene.times.empty()) scene.times.push_back(aligned.control.t_end);
+  } catch (const ConfigError& e) {
+    report_input_error(e);
+    return 2;
+  }
+  const fs::path dir = options.out_dir.empty() ? fs::path("out") / (scene.name + "-atlas")
+                                               : fs::path(options.out_dir);
+  std::optional<FolderLock> lock;  // one atlas at a time in a folder
+  try {
+    lock.emplace(dir);
+    fs::create_directories(dir / "runs");
+  } catch (const std::exception& e) {
+    std::cerr << "granvv: error: " << e.what() << "\n";
+    return 2;
+  }
+  catch_interruptions();
+  const int jobs =
+      options.jobs > 0 ? options.jobs : std::max(1, int(std::thread::hardware_concurrency()));
+  AtlasRunner runner(scene, dir / "runs", jobs, options.quiet);
+
+  // 2. The exact solutions, and the pilot: each hydro at the case's own setting.
+  std::vector<AtlasRun> runs;
+  std::vector<std::string> hydro_models;
+  json skipped = json::array();
+  for (const auto& rung : ladder) {
+    if (!rung.skipped.empty()) continue;
+    if (is_hydro(rung.model)) {
+      hydro_models.push_back(rung.model);
+    } else {
+      runs.push_back(runner.run_one({rung.model, 0, 0.0}));
+    }
+  }
+  std::vector<AtlasSetting> planned;
+  std::vector<double> estimates;
+  double planned_seconds = 0.0;
+  for (const auto& model : hydro_models) {
+    const AtlasRun pilot = runner.run_one({model, scene.case_cells, 1.0});
+    runs.push_back(pilot);
+    planned_seconds += pilot.cost.wall_seconds;
+    // 3. The grid within the budget: the finest corner (the reference) first, then the cheapest.
+    std::vector<AtlasSetting> grid_settings;
+    for (int c : grid.cells) {
+      for (double f : grid.factors) {
+        if (c == scene.case_cells && f == 1.0) continue;
+        grid_settings.push_back({model, c, f});
+      }
+    }
+    const AtlasSetting finest{model, grid.cells.back(), grid.factors.front()};
+    std::stable_sort(
+        grid_settings.begin(), grid_settings.end(),
+        [&](const AtlasSetting& a, const AtlasSetting& b) {
+          const bool fa = a.cells == finest.cells && a.step_factor == finest.step_factor;
+          const bool fb = b.cells == finest.cells && b.step_factor == finest.step_factor;
+          if (fa != fb) return fa;
+          return estimate(a, pilot, scene.case_cells) < estimate(b, pilot, scene.case_cells);
+        });
+    for (const auto& s : grid_settings) {
+      const double e = estimate(s, pilot, scene.case_cells);
+      if ((planned_seconds + e) / jobs > options.budget / hydro_models.size()) {
+        skipped.push_back(
+            {{"setting", setting_json(s)},
+             {"estimate_seconds", e},
+             {"reason", "its estimated " + format_real(e) + " s would pass the budget (--budget " +
+                            format_real(options.budget) + ")"}});
+        continue;
+      }
+      planned_seconds += e;
+      planned.push_back(s);
+      estimates.push_back(e);
+    }
+  }
+  {
+    auto more = runner.run(planned, estimates);
+    runs.insert(runs.end(), more.begin(), more.end());
+  }
+  if (interruption_signal()) {
+    std::cerr << "granvv: atlas interrupted; the " << runner.made() << " runs made are cached in "
+              << (dir / "runs").string() << ", and a re-run of the same atlas keeps them\n";
+    return interrupted_exit_code();
+  }
+
+  // 4. References: each hydro's finest run that finished; the richest model's is the reference
+  // of the model errors.
+  auto finest_of = [&](const std::string& model) -> const AtlasRun* {
+    const AtlasRun* best = nullptr;
+    for (const auto& r : runs) {
+      if (r.setting.model != model || r.status != "ok") continue;
+      if (!best || r.setting.cells > best->setting.cells ||
+          (r.setting.cells == best->setting.cells &&
+           r.setting.step_factor < best->setting.step_factor)) {
+        best = &r;
+      }
+    }
+    return best;
+  };
+  std::map<std::string, const AtlasRun*> own_reference;
+  std::string richest;
+  for (const auto& model : hydro_models) {
+    if (const AtlasRun* f = finest_of(model)) own_reference[model] = f, richest = model;
+  }
+  if (richest.empty()) {
+    std::cerr << "granvv: error: atlas: no hydro run finished, so there is no reference to "
+                 "measure errors against\n";
+    return 1;
+  }
+  const AtlasRun& reference = *own_reference[richest];
+  // The reference's own convergence: its neighbours one step coarser in cells and in step.
+  std::map<std::string, double> convergence;
+  for (const auto& r : runs) {
+    if (r.setting.model != richest || r.status != "ok" || &r == &reference) continue;
+    const bool coarser_cells = r.setting.step_factor == reference.setting.step_factor &&
+                               r.setting.cells < reference.setting.cells &&
+                               2 * r.setting.cells >= reference.setting.cells;
+    const bool coarser_step = r.setting.cells == reference.setting.cells &&
+                              r.setting.step_factor > reference.setting.step_factor &&
+                              r.setting.step_factor <= 2 * reference.setting.step_factor;
+    if (!coarser_cells && !coarser_step) continue;
+    for (const auto& [k, v] : observable_errors(r, reference, observables)) {
+      convergence[k] = std::max(convergence.count(k) ? convergence[k] : 0.0, v);
+    }
+  }
+
+  // 5. Errors, fronts, recommendation.
+  std::vector<std::map<std::string, double>> numerical(runs.size()), model_error(runs.size());
+  std::vector<atlas::Candidate> candidates;
+  std::vector<std::size_t> candidate_run;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const AtlasRun& r = runs[i];
+    if (r.status != "ok") continue;
+    if (own_reference.count(r.setting.model)) {
+      numerical[i] = observable_errors(r, *own_reference[r.setting.model], observables);
+    }
+    model_error[i] = &r == &reference ? convergence : observable_errors(r, reference, observables);
+    candidates.push_back({r.cost.wall_seconds, model_error[i]});
+    candidate_run.push_back(i);
+  }
+  json recommendation;
+  if (const auto best = atlas::cheapest_adequate(candidates, observables, options.tolerance)) {
+    const AtlasRun& r = runs[candidate_run[*best]];
+    recommendation = {{"tolerance", options.tolerance},
+                      {"model", r.setting.model},
+                      {"setting", setting_json(r.setting)},
+                      {"cost",
+                       {{"wall_seconds", r.cost.wall_seconds},
+                        {"work", r.cost.work},
+                        {"work_unit", r.cost.work_unit}}},
+                      {"error", errors_json(model_error[candidate_run[*best]])}};
+    // The next rung up: the cheapest adequate run of a richer model, else the cheapest of the
+    // next richer model that ran.
+    const auto rank = [](const std::string& m) {
+      return std::find(kLadder.begin(), kLadder.end(), m) - kLadder.begin();
+    };
+    json next = nullptr;
+    for (int pass = 0; pass < 2 && next.is_null(); ++pass) {
+      const AtlasRun* pick = nullptr;
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const AtlasRun& c = runs[candidate_run[k]];
+        if (rank(c.setting.model) <= rank(r.setting.model)) continue;
+        if (pass == 0 && !atlas::adequate(candidates[k], observables, options.tolerance)) continue;
+        if (!pick || c.cost.wall_seconds < pick->cost.wall_seconds) pick = &c;
+      }
+      if (pick) {
+        next = {{"model", pick->setting.model},
+                {"setting", setting_json(pick->setting)},
+                {"adequate", pass == 0},
+                {"cost", {{"wall_seconds", pick->cost.wall_seconds}, {"work", pick->cost.work}}}};
+      }
+    }
+    recommendation["next_rung"] = next;
+  } else {
+    recommendation = {{"tolerance", options.tolerance},
+                      {"model", nullptr},
+                      {"reason", "no run meets the tolerance on every observable"}};
+  }
+  std::map<std::string, std::vector<bool>> fronts;  // per observable, over the runs
+  for (const auto& name : observables) {
+    std::vector<double> cost, error;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      cost.push_back(runs[i].status == "ok" ? runs[i].cost.wall_seconds : kNaN);
+      error.push_back(model_error[i].count(name) ? model_error[i][name] : kNaN);
+    }
+    fronts[name] = atlas::pareto_front(cost, error);
+  }
+
+  // 6. Stability boundaries of each hydro around the case's own setting.
+  json stability = json::array();
+  for (const auto& model : hydro_models) {
+    if (!own_reference.count(model)) continue;
+    const AtlasRun& ref = *own_reference[model];
+    auto classify = [&](const AtlasRun& r) -> std::string {
+      if (r.status != "ok") return r.status;
+      const double e = largest(observable_errors(r, ref, observables));
+      return e > options.tolerance ? "error_above_tolerance" : "";
+    };
+    json boundaries = json::array();
+    std::vector<AtlasRun> probed;  // the boundary searches' runs, drawn on the map too
+    struct Push {
+      const char* knob;
+      double factor;
+    };
+    for (const Push push : {Push{"step_factor", 2.0}, Push{"cells", 0.5}}) {
+      const bool cells = std::string(push.knob) == "cells";
+      auto probe = [&](double knob) {
+        AtlasSetting s{model, cells ? int(std::lround(knob)) : scene.case_cells,
+                       cells ? 1.0 : knob};
+        if (interruption_signal()) return std::string("interrupted");
+        probed.push_back(runner.run_one(s));
+        return classify(probed.back());
+      };
+      const double start_knob = cells ? scene.case_cells : 1.0;
+      if (!classify(runner.run_one({model, scene.case_cells, 1.0})).empty()) {
+        boundaries.push_back({{"knob", push.knob},
+                              {"note",
+                               "the case's own setting already fails against the "
+                               "finest run; no boundary searched"}});
+        continue;
+      }
+      const atlas::StabilityBoundary b =
+          atlas::find_stability_boundary(start_knob, push.factor, kPushes, kRefinements, probe);
+      boundaries.push_back({{"knob", push.knob},
+                            {"direction", push.factor > 1 ? "up" : "down"},
+                            {"stable", b.stable},
+                            {"failed", b.failure.empty() ? json(nullptr) : json(b.failed)},
+                            {"failure", b.failure.empty() ? json(nullptr) : json(b.failure)},
+                            {"probes", b.probes}});
+    }
+    json grid_points = json::array();
+    std::set<std::pair<int, double>> drawn;
+    for (const auto* list : {&runs, &probed}) {
+      for (const auto& r : *list) {
+        if (r.setting.model != model ||
+            !drawn.insert({r.setting.cells, r.setting.step_factor}).second) {
+          continue;
+        }
+        const std::string c = classify(r);
+        grid_points.push_back({{"cells", r.setting.cells},
+                               {"step_factor", r.setting.step_factor},
+                               {"state", c.empty() ? "ok" : c}});
+      }
+    }
+    stability.push_back({{"model", model},
+                         {"default", {{"cells", scene.case_cells}, {"step_factor", 1.0}}},
+                         {"grid", grid_points},
+                         {"boundaries", boundaries}});
+  }
+
+  // 7. The ladder timeline: how long each model's best run stays within the tolerance.
+  json timeline = json::array();
+  for (const auto& rung : ladder) {
+    if (!rung.skipped.empty()) continue;
+    const AtlasRun* best = own_reference.count(rung.model) ? own_reference[rung.model] : nullptr;
+    for (const auto& r : runs) {
+      if (!best && r.setting.model == rung.model && r.status == "ok") best = &r;
+    }
+    if (!best) continue;
+    const std::vector<std::string> judged = provided_observables(*best, observables);
+    const std::vector<double> e = error_over_time(*best, reference, judged);
+    json until = nullptr, exceeded = nullptr;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      if (!(e[i] <= options.tolerance)) {
+        exceeded = reference.times[i];
+        break;
+      }
+      until = reference.times[i];
+    }
+    json errs = json::array();
+    for (double x : e) errs.push_back(number_or_null(x));
+    timeline.push_back({{"model", rung.model},
+                        {"setting", setting_json(best->setting)},
+                        {"judged", judged},
+                        {"times", reference.times},
+                        {"error", errs},
+                        {"adequate_until", until},
+                        {"exceeded_at", exceeded}});
+  }
+
+  // 8. atlas.json, atlas.h5, atlas.html.
+  json run_rows = json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const AtlasRun& r = runs[i];
+    json pareto = json::array();
+    for (const auto& name : observables) {
+      if (fronts[name][i]) pareto.push_back(name);
+    }
+    const double num = largest(numerical[i]), mod = largest(model_error[i]);
+    json row = setting_json(r.setting);
+    row.update({{"status", r.status},
+                {"reason", r.reason},
+                {"wall_seconds", r.cost.wall_seconds},
+                {"work", r.cost.work},
+                {"work_unit", r.cost.work_unit},
+                {"rejected_steps", r.rejected_steps},
+                {"cached", r.cached},
+                {"numerical_error", errors_json(numerical[i])},
+                {"model_error", errors_json(model_error[i])},
+                {"over_resolved", r.setting.model != richest && std::isfinite(num) &&
+                                      std::isfinite(mod) && num < kOverResolved * mod},
+                {"pareto", pareto}});
+    run_rows.push_back(row);
+  }
+  json ladder_rows = json::array();
+  for (const auto& rung : ladder) {
+    ladder_rows.push_back({{"model", rung.model},
+                           {"runs", rung.skipped.empty()},
+                           {"reason", rung.skipped.empty() ? json(nullptr) : json(rung.skipped)}});
+  }
+  bool converged = true;
+  for (const auto& [k, v] : convergence) converged &= v <= options.tolerance;
+  json atlas = {{"recommendation", recommendation},
+                {"case", scene.name},
+                {"granvv_version", GRANVV_VERSION},
+                {"status", "ok"},
+                {"tolerance", options.tolerance},
+                {"budget_seconds", options.budget},
+                {"jobs", jobs},
+                {"observables", observables},
+                {"times", scene.times},
+                {"ladder", ladder_rows},
+                {"reference",
+                 {{"setting", setting_json(reference.setting)},
+                  {"convergence", errors_json(convergence)},
+                  {"converged_to_tolerance", converged},
+                  {"how",
+                   "largest difference to its neighbours one step coarser in cells and "
+                   "in step factor: an upper bound of its own error"}}},
+                {"runs", run_rows},
+                {"stability", stability},
+                {"timeline", timeline},
+                {"skipped", skipped},
+                {"runs_made", runner.made()},
+                {"run_seconds", runner.spent()},
+                {"wall_seconds", seconds_since(start)}};
+  try {
+    write_atlas_h5(dir / "atlas.h5", runs, numerical, model_error, observables);
+    write_file_atomically(dir / "atlas.json", summary_text(atlas));
+  } catch (const std::exception& e) {
+    std::cerr << "granvv: error: atlas: " << e.what() << "\n";
+    return 1;
+  }
+  if (recommendation["model"].is_string()) {
+    std::cerr << "atlas: at tolerance " << options.tolerance << " the cheapest adequate model is "
+              << describe(runs[candidate_run[*atlas::cheapest_adequate(candidates, observables,
+                                                                       options.tolerance)]]
+                              .setting)
+              << "\n";
+  } else {
+    std::cerr << "atlas: no run meets tolerance " << options.tolerance << " on every observable\n";
+  }
+  std::cerr << "atlas: wrote " << (dir / "atlas.json").string() << " (" << runs.size() << " runs, "
+            << runner.made() << " made now)\n";
+  if (options.report) {
+    const int status = build_report(dir);
+    if (status != 0) {
+      std::cerr << "granvv: error: atlas page failed (exit " << status
+                << "); atlas.json is complete\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace granvv::app
