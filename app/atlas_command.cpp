@@ -424,6 +424,16 @@ int atlas_command(const AtlasOptions& options) {
     return 1;
   }
   const AtlasRun& reference = *own_reference[richest];
+  // What the reference itself does not give (a density level the peak never reached) cannot be
+  // judged: it is dropped from the observables, and atlas.json says so.
+  json not_judged = json::array();
+  {
+    const std::vector<std::string> given = provided_observables(reference, observables);
+    for (const auto& name : observables) {
+      if (std::find(given.begin(), given.end(), name) == given.end()) not_judged.push_back(name);
+    }
+    observables = given;
+  }
   // The reference's own convergence: its neighbours one step coarser in cells and in step.
   std::map<std::string, double> convergence;
   for (const auto& r : runs) {
@@ -634,6 +644,11 @@ int atlas_command(const AtlasOptions& options) {
                 {"budget_seconds", options.budget},
                 {"jobs", jobs},
                 {"observables", observables},
+                {"observables_not_judged",
+                 {{"names", not_judged},
+                  {"why",
+                   "the reference run does not give them (a crossing level its peak "
+                   "density never reached)"}}},
                 {"times", scene.times},
                 {"ladder", ladder_rows},
                 {"reference",
