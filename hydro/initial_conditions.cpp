@@ -75,6 +75,11 @@ std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p) {
   return seeded ? seeded(p.values) : std::nullopt;
 }
 
+std::vector<std::string> initial_files(const InitialParameters& p) {
+  const auto& files = find_initial_condition(p.type).files;
+  return files ? files(p.values) : std::vector<std::string>{};
+}
+
 LagrangianState discretize(const InitialFields& f, int cells, double node_offset, bool transverse) {
   static const double gauss_x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
   static const double gauss_w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
