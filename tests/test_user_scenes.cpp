@@ -157,7 +157,7 @@ TEST(UserScenes, SingleModeAsAnExpressionGivesTheBuiltInRunToRoundOff) {
   EXPECT_LE(worst, 1e-13);
   // Its flow-by-inertia reference (from the formula, slope by differences) has the exact tau.
   ASSERT_TRUE(expression.inertia_tau);
-  EXPECT_NEAR(*expression.inertia_tau, 1.0 / (2 * kPi * 0.05), 1e-8);
+  EXPECT_NEAR(*expression.inertia_tau, 1.0 / (2 * kPi * 0.05), 1e-10);
 }
 
 struct Scratch {
@@ -378,6 +378,9 @@ INSTANTIATE_TEST_SUITE_P(
         Refusal{"not_finite",
                 kExpression + "--set 'initial.velocity=1/x'",
                 {"initial.velocity", "not finite", "x = 0"}},
+        Refusal{"transverse_without_its_flag",
+                kExpression + "--set 'initial.transverse_velocity=0.1*cos(2*pi*x)'",
+                {"initial.transverse_velocity", "hydro.transverse_velocity = true"}},
         Refusal{"mean_density_not_one",
                 kExpression + "--set initial.density=2",
                 {"initial.density", "mean density of 2", "must be 1"}},
