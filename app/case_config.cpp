@@ -185,6 +185,17 @@ std::optional<Value> extract(const KeySpec& spec, const toml::node& node) {
       }
       return Value(std::move(xs));
     }
+    case ValueType::real_table: {
+      const auto* table = node.as_table();
+      if (!table) return std::nullopt;
+      RealTable named;
+      for (auto&& [k, v] : *table) {
+        const auto x = real_of(v);
+        if (!x) return std::nullopt;
+        named[std::string(k.str())] = *x;
+      }
+      return Value(std::move(named));
+    }
   }
   return std::nullopt;
 }
@@ -246,6 +257,10 @@ void insert_value(toml::table& root, const std::string& key, const Value& value)
           toml::array arr;
           for (const long long x : v) arr.push_back(static_cast<std::int64_t>(x));
           t->insert_or_assign(leaf, std::move(arr));
+        } else if constexpr (std::is_same_v<T, RealTable>) {
+          toml::table named;
+          for (const auto& [name, x] : v) named.insert_or_assign(name, x);
+          t->insert_or_assign(leaf, std::move(named));
         } else {
           t->insert_or_assign(leaf, v);
         }

@@ -39,7 +39,16 @@ Constraint constraint_of(const hydro::ParameterRange& range) {
   c.max = range.max;
   c.min_exclusive = range.min_exclusive;
   c.max_exclusive = range.max_exclusive;
+  c.choices = range.choices;
   return c;
+}
+
+// The case type of a parameter's alternative (hydro/parameter_set.hpp).
+ValueType value_type_of(const hydro::ParameterSpec& spec) {
+  if (spec.is_integer()) return kInteger;
+  if (spec.is_text()) return kString;
+  if (spec.is_named_reals()) return ValueType::real_table;
+  return kReal;
 }
 
 // initial.type, one of the registered types, then initial.<name> for every parameter a type
@@ -54,8 +63,8 @@ std::vector<KeySpec> initial_condition_rows() {
     const Default value = std::visit([](auto x) { return Default(x); }, spec.default_value);
     const std::string help =
         key.types.empty() ? spec.help : join(key.types, "/") + ": " + spec.help;
-    rows.push_back({"initial." + spec.name, spec.is_integer() ? kInteger : kReal, value,
-                    constraint_of(spec.range), help});
+    rows.push_back(
+        {"initial." + spec.name, value_type_of(spec), value, constraint_of(spec.range), help});
   }
   return rows;
 }
@@ -624,6 +633,8 @@ std::string type_phrase(ValueType type) {
       return "an array of reals";
     case ValueType::integer_array:
       return "an array of integers";
+    case ValueType::real_table:
+      return "a table of named reals";
   }
   return "a value";
 }
@@ -683,6 +694,14 @@ std::optional<std::string> constraint_violation(const KeySpec& spec, const Value
       return array_violation(spec, std::get<std::vector<double>>(value));
     case ValueType::integer_array:
       return array_violation(spec, std::get<std::vector<long long>>(value));
+    case ValueType::real_table:
+      for (const auto& [name, x] : std::get<RealTable>(value)) {
+        if (!std::isfinite(x)) {
+          return with_description(
+              "every value must be a finite real, but " + name + " is " + format_real(x), spec);
+        }
+      }
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -824,6 +843,16 @@ std::string format_value(const Value& value) {
       std::vector<std::string> items;
       for (const long long x : xs) items.push_back(std::to_string(x));
       return "[" + join(items, ", ") + "]";
+    }
+    std::string operator()(const RealTable& table) const {  // a TOML inline table
+      std::vector<std::string> items;
+      for (const auto& [name, x] : table) {
+        const bool bare = !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+          return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+        });
+        items.push_back((bare ? name : toml_quoted(name)) + " = " + format_real(x));
+      }
+      return items.empty() ? "{}" : "{ " + join(items, ", ") + " }";
     }
   };
   return std::visit(Visitor{}, value);

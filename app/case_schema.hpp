@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,13 +20,17 @@ namespace granvv::app {
 class CaseConfig;
 
 // The order matches the alternatives of Value.
-enum class ValueType { real, integer, boolean, string, real_array, integer_array };
+enum class ValueType { real, integer, boolean, string, real_array, integer_array, real_table };
+
+// A table of named reals, such as [initial.constants]: name -> value.
+using RealTable = std::map<std::string, double>;
 
 // A resolved value; Value::index() == static_cast<std::size_t>(ValueType).
-using Value =
-    std::variant<double, long long, bool, std::string, std::vector<double>, std::vector<long long>>;
+using Value = std::variant<double, long long, bool, std::string, std::vector<double>,
+                           std::vector<long long>, RealTable>;
 
-// "a real", "an integer", "a boolean", "a string", "an array of reals", "an array of integers".
+// "a real", "an integer", "a boolean", "a string", "an array of reals", "an array of integers",
+// "a table of named reals".
 std::string type_phrase(ValueType type);
 
 struct Default {
@@ -43,6 +48,8 @@ struct Default {
   Default(long long v) : kind(Kind::value), value(v) {}
   Default(bool v) : kind(Kind::value), value(v) {}
   Default(const char* v) : kind(Kind::value), value(std::string(v)) {}
+  Default(const std::string& v) : kind(Kind::value), value(v) {}
+  Default(const RealTable& v) : kind(Kind::value), value(v) {}
   static Default required() { return Default(Kind::required); }
   static Default file_stem() { return Default(Kind::file_stem); }
   static Default empty_array() { return Default(Kind::empty_array); }

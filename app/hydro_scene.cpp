@@ -141,6 +141,10 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
     const std::string name = "initial." + key.spec.name;
     if (key.spec.is_integer()) {
       values.set(key.spec.name, static_cast<long long>(c.int_value(name)));
+    } else if (key.spec.is_text()) {
+      values.set(key.spec.name, c.string(name));
+    } else if (key.spec.is_named_reals()) {
+      values.set(key.spec.name, std::get<RealTable>(c.value(name)));
     } else {
       values.set(key.spec.name, c.real(name));
     }

@@ -18,6 +18,7 @@
 #include "app/compare_output.hpp"
 #include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/initial_provenance.hpp"
 #include "app/interruption.hpp"
 #include "app/md_checkpoint.hpp"
 #include "app/md_output.hpp"
@@ -303,6 +304,13 @@ int run_command(const RunOptions& options) {
       {"output_dir", dir.string()}, {"hydro", nullptr},   {"md", nullptr},
       {"compare", nullptr}};
   if (writer) summary["run_id"] = folder->run_id();
+  if (!hydro::initial_files(scene.initial).empty()) {  // the files the initial state is read from
+    summary["initial"] = initial_provenance(scene.initial);
+    for (const auto& file : summary["initial"]["files"]) {
+      log->info("initial state from {} (sha256 {})", file["path"].get<std::string>(),
+                file["sha256"].get<std::string>());
+    }
+  }
   int exit_code = 0;
   bool interrupted = false;
   bool frames_in_checkpoints = false;  // the particle files are written beside the checkpoints

@@ -10,13 +10,16 @@ InitialConditionType uniform_initial_condition();
 InitialConditionType single_mode_initial_condition();
 InitialConditionType random_modes_initial_condition();
 InitialConditionType linear_mode_initial_condition();
+InitialConditionType expression_initial_condition();
+InitialConditionType table_initial_condition();
+InitialConditionType snapshot_initial_condition();
 
 const std::vector<InitialConditionType>& initial_condition_types() {
   static const std::vector<InitialConditionType> types = {
-      uniform_initial_condition(),
-      single_mode_initial_condition(),
-      random_modes_initial_condition(),
-      linear_mode_initial_condition(),
+      uniform_initial_condition(),      single_mode_initial_condition(),
+      random_modes_initial_condition(), linear_mode_initial_condition(),
+      expression_initial_condition(),   table_initial_condition(),
+      snapshot_initial_condition(),
   };
   return types;
 }

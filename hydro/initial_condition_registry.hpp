@@ -24,9 +24,12 @@ struct InitialConditionType {
   std::function<std::optional<InertiaReference>(const ParameterSet&)> inertia_reference;
   // Optional: the eigenmode of the cooling state it seeds.
   std::function<std::optional<SeededEigenmode>(const ParameterSet&)> seeded_eigenmode;
+  // Optional: the files its fields are read from (their paths and checksums go into
+  // summary.json for provenance).
+  std::function<std::vector<std::string>(const ParameterSet&)> files;
 };
 
-// In table order: uniform, single_mode, random_modes, linear_mode.
+// In table order: uniform, single_mode, random_modes, linear_mode, expression, table, snapshot.
 const std::vector<InitialConditionType>& initial_condition_types();
 // Throws std::invalid_argument for an unknown name.
 const InitialConditionType& find_initial_condition(const std::string& name);

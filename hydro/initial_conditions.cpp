@@ -61,8 +61,15 @@ std::optional<ParameterProblem> initial_parameter_problem(const InitialParameter
     return ParameterProblem{"transverse_amplitude",
                             "a transverse velocity needs hydro.transverse_velocity = true"};
   }
-  const auto& problem = find_initial_condition(p.type).problem;
-  return problem ? problem(p.values) : std::nullopt;
+  const auto& type = find_initial_condition(p.type);
+  for (const auto& spec : type.parameters) {  // a formula for v_y (initial.type = "expression")
+    if (spec.name == "transverse_velocity" && !transverse_velocity &&
+        p.values.text(spec.name) != "0") {
+      return ParameterProblem{spec.name,
+                              "a transverse velocity needs hydro.transverse_velocity = true"};
+    }
+  }
+  return type.problem ? type.problem(p.values) : std::nullopt;
 }
 
 std::optional<InertiaReference> inertia_reference(const InitialParameters& p) {
@@ -73,6 +80,11 @@ std::optional<InertiaReference> inertia_reference(const InitialParameters& p) {
 std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p) {
   const auto& seeded = find_initial_condition(p.type).seeded_eigenmode;
   return seeded ? seeded(p.values) : std::nullopt;
+}
+
+std::vector<std::string> initial_files(const InitialParameters& p) {
+  const auto& files = find_initial_condition(p.type).files;
+  return files ? files(p.values) : std::vector<std::string>{};
 }
 
 LagrangianState discretize(const InitialFields& f, int cells, double node_offset, bool transverse) {

@@ -63,6 +63,8 @@ std::optional<ParameterProblem> initial_parameter_problem(const InitialParameter
                                                           bool transverse_velocity);
 std::optional<InertiaReference> inertia_reference(const InitialParameters& p);
 std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p);
+// The files the fields are read from (empty for a type that reads none).
+std::vector<std::string> initial_files(const InitialParameters& p);
 
 // Nodes at x_j = -1/2 + (j + offset)/N (offset 1/2 puts a cell centre at x = 0, where the
 // single-mode singularity forms); cell masses and temperatures are exact cell averages

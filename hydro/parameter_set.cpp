@@ -7,7 +7,8 @@ namespace granvv::hydro {
 bool ParameterSpec::operator==(const ParameterSpec& o) const {
   return name == o.name && default_value == o.default_value && range.min == o.range.min &&
          range.max == o.range.max && range.min_exclusive == o.range.min_exclusive &&
-         range.max_exclusive == o.range.max_exclusive && help == o.help;
+         range.max_exclusive == o.range.max_exclusive && range.choices == o.range.choices &&
+         help == o.help;
 }
 
 ParameterSet& ParameterSet::set(const std::string& name, ParameterValue value) {
@@ -21,16 +22,29 @@ const ParameterValue& ParameterSet::value(const std::string& name) const {
   return it->second;
 }
 
-double ParameterSet::real(const std::string& name) const {
-  const auto* x = std::get_if<double>(&value(name));
-  if (!x) throw std::logic_error("parameter '" + name + "' is an integer, read as a real");
+namespace {
+template <typename T>
+const T& typed(const ParameterValue& value, const std::string& name, const char* as) {
+  const auto* x = std::get_if<T>(&value);
+  if (!x) throw std::logic_error("parameter '" + name + "' is not " + as + ", read as one");
   return *x;
+}
+}  // namespace
+
+double ParameterSet::real(const std::string& name) const {
+  return typed<double>(value(name), name, "a real");
 }
 
 long long ParameterSet::integer(const std::string& name) const {
-  const auto* x = std::get_if<long long>(&value(name));
-  if (!x) throw std::logic_error("parameter '" + name + "' is a real, read as an integer");
-  return *x;
+  return typed<long long>(value(name), name, "an integer");
+}
+
+const std::string& ParameterSet::text(const std::string& name) const {
+  return typed<std::string>(value(name), name, "a text");
+}
+
+const NamedReals& ParameterSet::named_reals(const std::string& name) const {
+  return typed<NamedReals>(value(name), name, "a table of named reals");
 }
 
 }  // namespace granvv::hydro

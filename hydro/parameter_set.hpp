@@ -10,18 +10,38 @@
 
 namespace granvv::hydro {
 
-// A real or an integer; the alternative is the parameter's type.
-using ParameterValue = std::variant<double, long long>;
+// Named reals: a table such as [initial.constants] (name -> value).
+using NamedReals = std::map<std::string, double>;
 
-// Allowed values: min/max bounds, each open or closed; no bound = unbounded.
+// A real, an integer, a text (a formula, a file path, a choice) or a table of named reals; the
+// alternative is the parameter's type.
+using ParameterValue = std::variant<double, long long, std::string, NamedReals>;
+
+// Allowed values: min/max bounds, each open or closed; no bound = unbounded. For a text
+// parameter, `choices` (empty = any text).
 struct ParameterRange {
   std::optional<double> min, max;
   bool min_exclusive = false, max_exclusive = false;
+  std::vector<std::string> choices;
 
   static ParameterRange any() { return {}; }
-  static ParameterRange at_least(double lo) { return {lo, std::nullopt, false, false}; }
-  static ParameterRange greater_than(double lo) { return {lo, std::nullopt, true, false}; }
-  static ParameterRange closed(double lo, double hi) { return {lo, hi, false, false}; }
+  static ParameterRange at_least(double lo) { return bounds(lo, std::nullopt, false); }
+  static ParameterRange greater_than(double lo) { return bounds(lo, std::nullopt, true); }
+  static ParameterRange closed(double lo, double hi) { return bounds(lo, hi, false); }
+  static ParameterRange one_of(std::vector<std::string> names) {
+    ParameterRange r;
+    r.choices = std::move(names);
+    return r;
+  }
+
+ private:
+  static ParameterRange bounds(double lo, std::optional<double> hi, bool lo_exclusive) {
+    ParameterRange r;
+    r.min = lo;
+    r.max = hi;
+    r.min_exclusive = lo_exclusive;
+    return r;
+  }
 };
 
 struct ParameterSpec {
@@ -31,11 +51,13 @@ struct ParameterSpec {
   std::string help;  // one line
 
   bool is_integer() const { return std::holds_alternative<long long>(default_value); }
+  bool is_text() const { return std::holds_alternative<std::string>(default_value); }
+  bool is_named_reals() const { return std::holds_alternative<NamedReals>(default_value); }
   bool operator==(const ParameterSpec& o) const;
 };
 
-// Values by name. Reading a missing name, or an integer as a real (or the reverse), is a
-// programming error: std::logic_error naming the parameter.
+// Values by name. Reading a missing name, or a value of another type (an integer as a real...), is
+// a programming error: std::logic_error naming the parameter.
 class ParameterSet {
  public:
   ParameterSet() = default;
@@ -45,6 +67,8 @@ class ParameterSet {
   ParameterSet& set(const std::string& name, ParameterValue value);
   double real(const std::string& name) const;
   long long integer(const std::string& name) const;
+  const std::string& text(const std::string& name) const;
+  const NamedReals& named_reals(const std::string& name) const;
   const ParameterValue& value(const std::string& name) const;
 
  private:

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake clang-format
   liblammps-dev lammps openmpi-bin libopenmpi-dev libeigen3-dev liblapacke-dev liblapack-dev libhdf5-dev libcli11-dev
-  libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev
+  libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libmuparser-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-h5py python3-jinja2
   chromium chromium-driver  # the slow suite opens report.html in a real browser (scripts/check_report.py)

@@ -26,8 +26,8 @@ TEST(InitialConditionRegistry, SchemaKeysAreTheDeclaredParameters) {
   std::vector<std::string> names;
   for (const auto& t : initial_condition_types()) names.push_back(t.name);
   EXPECT_EQ(type->constraint.choices, names);
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"uniform", "single_mode", "random_modes", "linear_mode"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"uniform", "single_mode", "random_modes",
+                                             "linear_mode", "expression", "table", "snapshot"}));
 
   std::vector<std::string> schema_keys;
   for (const auto& spec : app::case_schema()) {
@@ -38,8 +38,13 @@ TEST(InitialConditionRegistry, SchemaKeysAreTheDeclaredParameters) {
     declared.push_back(key.spec.name);
     const app::KeySpec* row = app::find_key_spec("initial." + key.spec.name);
     ASSERT_NE(row, nullptr) << key.spec.name;
-    EXPECT_EQ(row->type, key.spec.is_integer() ? app::ValueType::integer : app::ValueType::real);
-    EXPECT_EQ(row->default_value.value.index(), key.spec.is_integer() ? 1u : 0u);
+    const app::ValueType expected = key.spec.is_integer()       ? app::ValueType::integer
+                                    : key.spec.is_text()        ? app::ValueType::string
+                                    : key.spec.is_named_reals() ? app::ValueType::real_table
+                                                                : app::ValueType::real;
+    EXPECT_EQ(row->type, expected) << key.spec.name;
+    EXPECT_EQ(row->default_value.value.index(), static_cast<std::size_t>(expected));
+    EXPECT_EQ(row->constraint.choices, key.spec.range.choices) << key.spec.name;
     EXPECT_EQ(row->constraint.min, key.spec.range.min) << key.spec.name;
     // An integer read as an int: without a declared bound the schema puts INT_MAX.
     const std::optional<double> max = key.spec.is_integer() && !key.spec.range.max

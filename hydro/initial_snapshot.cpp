@@ -1,0 +1,115 @@
+// A previous run's state: the fields of its results.h5 at initial.time, from the hydro
+// (/hydro/fields, on its cells) or from the particles (/md/fields, the ensemble mean on the
+// bins, MD units scaled by Lx and n0 = N/(Lx Ly): docs/physics.md §4). The values become a
+// periodic table through the cell or bin centres (hydro/profile_table.hpp), so the run
+// continues a hydro, starts a hydro from particles, or starts particles from a hydro state.
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "fields/field_series_file.hpp"
+#include "fields/hdf5_datasets.hpp"
+#include "hydro/initial_condition_registry.hpp"
+#include "hydro/profile_table.hpp"
+
+namespace granvv::hydro {
+namespace {
+
+// A snapshot matches initial.time within this, relative to max(1, |time|): the particles'
+// snapshots fall on the nearest MD step (1e-6 relative in the shipped scenes).
+constexpr double kTimeTolerance = 1e-4;
+
+struct SnapshotProblem : std::runtime_error {
+  SnapshotProblem(std::string parameter, const std::string& reason)
+      : std::runtime_error(reason), parameter(std::move(parameter)) {}
+  std::string parameter;
+};
+
+std::string number(double x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << x;
+  return os.str();
+}
+
+ProfileTable read_snapshot(const ParameterSet& p) {
+  const std::string path = p.text("from"), source = p.text("source");
+  const double time = p.real("time");
+  const std::string group_name = "/" + source + "/fields";
+  H5::Exception::dontPrint();
+  fields::FieldSeries series;
+  double length = 1.0, density = 1.0;  // the units of the file's x and n
+  try {
+    const H5::H5File file(path, H5F_ACC_RDONLY);
+    if (!file.nameExists("/" + source) || !file.nameExists(group_name)) {
+      throw SnapshotProblem("source", path + " has no " + group_name + ": it is not a run with " +
+                                          (source == "md" ? "md.enabled" : "hydro.enabled") +
+                                          " (allowed: a source the file has)");
+    }
+    series = fields::read_field_series(file.openGroup(group_name));
+    if (source == "md") {
+      const H5::Group md = file.openGroup("/md");
+      length = h5::read_double_attribute(md, "box_length");
+      density = h5::read_double_attribute(md, "particles") /
+                (length * h5::read_double_attribute(md, "box_width"));
+    }
+  } catch (const H5::Exception&) {
+    throw SnapshotProblem("from", "cannot read " + path + " as a granvv results.h5");
+  } catch (const std::runtime_error& e) {
+    if (const auto* problem = dynamic_cast<const SnapshotProblem*>(&e)) throw *problem;
+    throw SnapshotProblem("from", path + ": " + e.what());
+  }
+  const fields::FieldSnapshot* found = nullptr;
+  std::string times;
+  for (const auto& s : series.snapshots) {
+    times += (times.empty() ? "" : ", ") + number(s.t);
+    if (std::abs(s.t - time) <= kTimeTolerance * std::max(1.0, std::abs(time))) found = &s;
+  }
+  if (!found) {
+    throw SnapshotProblem("time", "t = " + number(time) + " is not in " + path + group_name +
+                                      " (its times: " + (times.empty() ? "none" : times) + ")");
+  }
+  ProfileTable t;
+  for (std::size_t i = 0; i < found->x.size(); ++i) {
+    t.x.push_back(found->x[i] / length);
+    t.n.push_back(found->n[i] / density);
+  }
+  t.v_x = found->v_x;
+  t.v_y = found->v_y;
+  t.T = found->T;
+  return wrapped_into_period(std::move(t));
+}
+
+}  // namespace
+
+InitialConditionType snapshot_initial_condition() {
+  InitialConditionType type;
+  type.name = "snapshot";
+  type.parameters = {
+      initial_file_parameter(),
+      {"time", 0.0, ParameterRange::at_least(0),
+       "the snapshot time in the file (source = \"md\": MD units, as md.output_times)"},
+      {"source", std::string("hydro"), ParameterRange::one_of({"hydro", "md"}),
+       "whose fields: the hydro's (/hydro/fields) or the particles' (/md/fields)"},
+      initial_interpolation_parameter(),
+  };
+  type.problem = [](const ParameterSet& p) -> std::optional<ParameterProblem> {
+    if (auto missing = missing_file_problem(p.text("from"))) return missing;
+    try {
+      if (const auto why = profile_table_problem(read_snapshot(p))) {
+        return ParameterProblem{"from", "the snapshot's fields: " + *why};
+      }
+    } catch (const SnapshotProblem& e) {
+      return ParameterProblem{e.parameter, e.what()};
+    }
+    return std::nullopt;
+  };
+  type.generate = [](const ParameterSet& p, const Closure&) {
+    return profile_fields(read_snapshot(p), interpolation_from_name(p.text("interpolation")));
+  };
+  type.files = [](const ParameterSet& p) { return std::vector<std::string>{p.text("from")}; };
+  return type;
+}
+
+}  // namespace granvv::hydro
