@@ -1,0 +1,87 @@
+#include "md_bridge/periodic_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace granvv::md {
+
+PeriodicCells::PeriodicCells(double box_length, double box_width, double min_width, int particles)
+    : lx_(box_length), ly_(box_width) {
+  nx_ = int(std::floor(box_length / min_width));
+  ny_ = int(std::floor(box_width / min_width));
+  if (!(nx_ >= 3 && ny_ >= 3)) {
+    throw std::invalid_argument("a periodic cell grid needs a box of at least 3 x " +
+                                std::to_string(min_width) + " sigma on each side (box " +
+                                std::to_string(box_length) + " x " + std::to_string(box_width) +
+                                ")");
+  }
+  // Few enough cells that the grid costs no more memory than the particles.
+  const long long most = std::max(9LL, 4LL * particles);
+  while (double(nx_) * ny_ > double(most) && nx_ > 3 && ny_ > 3) {
+    nx_ = std::max(3, nx_ / 2);
+    ny_ = std::max(3, ny_ / 2);
+  }
+  wx_ = lx_ / nx_;
+  wy_ = ly_ / ny_;
+  members_.assign(std::size_t(nx_) * std::size_t(ny_), {});
+  cell_.assign(std::size_t(particles), -1);
+  slot_.assign(std::size_t(particles), -1);
+}
+
+int PeriodicCells::cell_at(double x, double y) const {
+  const int cx = std::clamp(int(std::floor((x + 0.5 * lx_) / wx_)), 0, nx_ - 1);
+  const int cy = std::clamp(int(std::floor((y + 0.5 * ly_) / wy_)), 0, ny_ - 1);
+  return cy * nx_ + cx;
+}
+
+std::array<int, 9> PeriodicCells::neighbourhood(int cell) const {
+  const int cx = cell % nx_, cy = cell / nx_;
+  std::array<int, 9> around{};
+  int k = 0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int y = (cy + dy + ny_) % ny_;
+    for (int dx = -1; dx <= 1; ++dx) around[std::size_t(k++)] = y * nx_ + (cx + dx + nx_) % nx_;
+  }
+  return around;
+}
+
+int PeriodicCells::across(int cell, int axis, int direction, bool& wraps) const {
+  int cx = cell % nx_, cy = cell / nx_;
+  int& c = axis == 0 ? cx : cy;
+  const int n = axis == 0 ? nx_ : ny_;
+  c += direction;
+  wraps = c < 0 || c >= n;
+  c = (c + n) % n;
+  return cy * nx_ + cx;
+}
+
+void PeriodicCells::clear() {
+  for (auto& m : members_) m.clear();
+  std::fill(cell_.begin(), cell_.end(), -1);
+  std::fill(slot_.begin(), slot_.end(), -1);
+}
+
+void PeriodicCells::insert(int particle, int cell) {
+  auto& m = members_[std::size_t(cell)];
+  cell_[std::size_t(particle)] = cell;
+  slot_[std::size_t(particle)] = int(m.size());
+  m.push_back(particle);
+}
+
+void PeriodicCells::remove(int particle) {
+  auto& m = members_[std::size_t(cell_[std::size_t(particle)])];
+  const int slot = slot_[std::size_t(particle)];
+  const int last = m.back();
+  m[std::size_t(slot)] = last;
+  slot_[std::size_t(last)] = slot;
+  m.pop_back();
+}
+
+void PeriodicCells::move(int particle, int to) {
+  remove(particle);
+  insert(particle, to);
+}
+
+}  // namespace granvv::md
