@@ -27,9 +27,9 @@ void elastic_gas(benchmark::State& state, double area_fraction) {
   EventDrivenEngine engine(o);
   engine.set_up(sample_particles(scene, granvv::hydro::uniform_fields(), 1));
   engine.advance_to(20.0);  // relaxed from the sample
-  // About 5e5 collisions per iteration: N nu / 2 per unit time, nu from Enskog.
+  // About 1e5 collisions per iteration: N nu / 2 per unit time, nu from Enskog.
   const double nu = 2.0 * 1.7724538509 * scene.number_density() * enskog_chi(area_fraction);
-  const double step = 1e6 / (scene.particles * nu);
+  const double step = 2e5 / (scene.particles * nu);
   double t = engine.time();
   long long collisions = 0, events = 0;
   for (auto _ : state) {

@@ -20,6 +20,10 @@ constexpr double kDisksPerCell = 1.0;
 // The cell edge exceeds sigma by this much, so that a partner at contact is always in the
 // neighbourhood despite the round-off of positions near a face.
 constexpr double kCellMargin = 1e-9;
+// After this many collisions per disk the disks are put in the order of their cells again (at
+// the end of a segment: positions synchronised, calendar made anew), so that neighbours stay
+// near each other in memory as the gas mixes.
+constexpr double kCollisionsPerReorder = 20.0;
 
 double required_setting(const EngineSettings& settings, const std::string& key) {
   const auto found = settings.find(key);
@@ -91,16 +95,28 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
     throw std::invalid_argument("event-driven engine: " + std::to_string(n) +
                                 " particles for a scene of " + std::to_string(options_.particles));
   }
-  disks_.assign(std::size_t(n), Disk{});
-  cells_->clear();
+  // Disks in the order of their cells, so that neighbours lie near each other in memory.
+  std::vector<std::pair<int, int>> by_cell(x.size() / 3);
   for (int i = 0; i < n; ++i) {
-    Disk& d = disks_[std::size_t(i)];
+    by_cell[std::size_t(i)] = {
+        cells_->cell_at(periodic_image(x[3 * std::size_t(i)], options_.box_length),
+                        periodic_image(x[3 * std::size_t(i) + 1], options_.box_width)),
+        i};
+  }
+  std::sort(by_cell.begin(), by_cell.end());
+  disks_.assign(std::size_t(n), Disk{});
+  id_.assign(std::size_t(n), 0);
+  cells_->clear();
+  for (int k = 0; k < n; ++k) {
+    const auto [cell, i] = by_cell[std::size_t(k)];
+    Disk& d = disks_[std::size_t(k)];
     d.x = periodic_image(x[3 * std::size_t(i)], options_.box_length);
     d.y = periodic_image(x[3 * std::size_t(i) + 1], options_.box_width);
     d.vx = v[3 * std::size_t(i)];
     d.vy = v[3 * std::size_t(i) + 1];
     d.t = t;
-    cells_->insert(i, cells_->cell_at(d.x, d.y));
+    id_[std::size_t(k)] = i;
+    cells_->insert(k, cell);
   }
   t_ = t;
   calendar_.clear();
@@ -116,7 +132,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
 
 void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
-  events_ = collisions_ = crossings_ = changed_ = 0;
+  events_ = collisions_ = crossings_ = changed_ = ordered_at_ = 0;
   ++runs_;
 }
 
@@ -132,44 +148,70 @@ void EventDrivenEngine::fly(Disk& d, double t) const {
   d.t = t;
 }
 
-// The earliest of: leaving the cell, or touching a disk of the neighbourhood (at its position
-// now, computed without moving it).
-void EventDrivenEngine::predict(int i, double now) {
+// Touching a disk of `cell` (at its position now, computed without moving it) sooner than
+// the soonest collision found so far.
+void EventDrivenEngine::scan(int i, double now, int cell) {
   Disk& a = disks_[std::size_t(i)];
-  fly(a, now);
+  for (const int j : cells_->members(cell)) {
+    if (j == i) continue;
+    const Disk& b = disks_[std::size_t(j)];
+    const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
+    const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
+    const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
+    if (now + dt < a.soonest) {
+      a.soonest = now + dt;
+      a.partner = j;
+      a.partner_count = b.count;
+    }
+  }
+}
+
+// The earlier of its soonest collision and leaving its cell.
+void EventDrivenEngine::schedule(int i, double now) {
+  const Disk& a = disks_[std::size_t(i)];
   const int cell = cells_->cell_of(i);
   ParticleEvent e;
   e.i = i;
   e.count_i = a.count;
-  double best = kNever;
+  e.t = a.soonest;
+  e.partner = a.partner;
+  e.count_partner = a.partner_count;
   const double x_low = cells_->x_low(cell), y_low = cells_->y_low(cell);
   if (a.vx != 0.0) {
     const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
-    const double dt = std::max(0.0, (edge - a.x) / a.vx);
-    if (dt < best) best = dt, e.partner = -1;
+    const double t = now + std::max(0.0, (edge - a.x) / a.vx);
+    if (t < e.t) e.t = t, e.partner = -1;
   }
   if (a.vy != 0.0) {
     const double edge = a.vy > 0.0 ? y_low + cells_->cell_width() : y_low;
-    const double dt = std::max(0.0, (edge - a.y) / a.vy);
-    if (dt < best) best = dt, e.partner = -2;
+    const double t = now + std::max(0.0, (edge - a.y) / a.vy);
+    if (t < e.t) e.t = t, e.partner = -2;
   }
-  for (const int c : cells_->neighbourhood(cell)) {
-    for (const int j : cells_->members(c)) {
-      if (j == i) continue;
-      const Disk& b = disks_[std::size_t(j)];
-      const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
-      const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
-      const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
-      if (dt < best) {
-        best = dt;
-        e.partner = j;
-        e.count_partner = b.count;
-      }
-    }
-  }
-  if (best == kNever) return;  // at rest and alone: others will find it
-  e.t = now + best;
+  if (e.t == kNever) return;  // at rest and alone: others will find it
   calendar_.push(e);
+}
+
+void EventDrivenEngine::predict(int i, double now) {
+  Disk& a = disks_[std::size_t(i)];
+  fly(a, now);
+  a.soonest = kNever;
+  a.partner = -1;
+  for (const int c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
+  schedule(i, now);
+}
+
+// Disks of the old neighbourhood that changed course since the last scan have looked for this
+// one themselves; those that did not cannot collide sooner than the soonest found then, unless
+// that partner has changed course (then the whole neighbourhood is scanned again).
+void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int direction) {
+  Disk& a = disks_[std::size_t(i)];
+  if (a.partner >= 0 && disks_[std::size_t(a.partner)].count != a.partner_count) {
+    predict(i, now);
+    return;
+  }
+  fly(a, now);
+  for (const int c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
+  schedule(i, now);
 }
 
 void EventDrivenEngine::collide(int i, int j, double now) {
@@ -218,7 +260,7 @@ void EventDrivenEngine::cross(int i, int axis, double now) {
   }
   cells_->move(i, to);
   ++crossings_, ++all_crossings_;
-  predict(i, now);
+  predict_after_crossing(i, now, axis, direction);
 }
 
 double EventDrivenEngine::advance_to(double t) {
@@ -264,6 +306,14 @@ double EventDrivenEngine::advance_to(double t) {
   }
   collision_rate_ = interval > 0.0 ? 2.0 * double(segment_collisions_) / (n * interval) : 0.0;
   synchronise();
+  if (double(collisions_ - ordered_at_) > kCollisionsPerReorder * n) {
+    const CollisionVirial last = virial_;
+    const double rate = collision_rate_;
+    start(x_, v_, t_);
+    virial_ = last;
+    collision_rate_ = rate;
+    ordered_at_ = collisions_;
+  }
   return t_;
 }
 
@@ -271,10 +321,11 @@ void EventDrivenEngine::synchronise() {
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     Disk& d = disks_[i];
     fly(d, t_);
-    x_[3 * i] = periodic_image(d.x, options_.box_length);
-    x_[3 * i + 1] = periodic_image(d.y, options_.box_width);
-    v_[3 * i] = d.vx;
-    v_[3 * i + 1] = d.vy;
+    const std::size_t id = std::size_t(id_[i]);
+    x_[3 * id] = periodic_image(d.x, options_.box_length);
+    x_[3 * id + 1] = periodic_image(d.y, options_.box_width);
+    v_[3 * id] = d.vx;
+    v_[3 * id + 1] = d.vy;
   }
 }
 
@@ -295,13 +346,13 @@ EngineValues EventDrivenEngine::series_values() const {
 double EventDrivenEngine::smallest_separation() const {
   double closest = kNever;
   for (std::size_t i = 0; i < disks_.size(); ++i) {
-    const int cell = cells_->cell_at(x_[3 * i], x_[3 * i + 1]);
-    for (const int c : cells_->neighbourhood(cell)) {
+    const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
+    for (const int c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
       for (const int j : cells_->members(c)) {
         if (std::size_t(j) <= i) continue;
-        const double dx = minimum_image(x_[3 * i] - x_[3 * std::size_t(j)], options_.box_length);
-        const double dy =
-            minimum_image(x_[3 * i + 1] - x_[3 * std::size_t(j) + 1], options_.box_width);
+        const Disk& b = disks_[std::size_t(j)];
+        const double dx = minimum_image(a.x - b.x, options_.box_length);
+        const double dy = minimum_image(a.y - b.y, options_.box_width);
         closest = std::min(closest, std::sqrt(dx * dx + dy * dy));
       }
     }
@@ -359,6 +410,7 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   made_ = std::chrono::steady_clock::now();
   disks_.clear();
   t_ = t;
+  ordered_at_ = collisions_;
   if (!p.x.empty()) start(p.x, p.v, t);
 }
 

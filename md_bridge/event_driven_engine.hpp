@@ -94,11 +94,21 @@ class EventDrivenEngine final : public ParticleEngine {
   struct Disk {
     double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
     double t = 0.0;  // its own clock: (x, y) is its position at t
+    // The soonest collision with a disk of its neighbourhood found since its last collision
+    // (absolute time, the partner and the partner's count then; kNever, -1 if none).
+    double soonest = 0.0;
+    int partner = -1;
+    std::uint32_t partner_count = 0;
     std::uint32_t count = 0;
   };
   void start(const std::vector<double>& x, const std::vector<double>& v, double t);
   void fly(Disk& d, double t) const;
+  // Its next event from a scan of its whole neighbourhood (after it collided, or its partner
+  // did), or after it entered a new cell from the three cells that joined the neighbourhood.
   void predict(int i, double now);
+  void predict_after_crossing(int i, double now, int axis, int direction);
+  void scan(int i, double now, int cell);
+  void schedule(int i, double now);
   void collide(int i, int j, double now);
   void cross(int i, int axis, double now);
   void synchronise();
@@ -108,13 +118,15 @@ class EventDrivenEngine final : public ParticleEngine {
   std::chrono::steady_clock::time_point made_;
   double wall_before_ = 0.0;
   int rank_ = 0;
-  std::vector<Disk> disks_;
+  std::vector<Disk> disks_;  // ordered by cell at the start (memory near neighbours)
+  std::vector<int> id_;      // particle ID of each disk
   std::unique_ptr<PeriodicCells> cells_;
   EventCalendar calendar_;
   std::vector<double> x_, v_, mass_;  // the disks at t_ (xyz), for the run loop
   double t_ = 0.0;
   // This run.
   long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0;
+  long long ordered_at_ = 0;  // collisions_ when the disks were last put in cell order
   // Over every run.
   int runs_ = 0;
   long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0;

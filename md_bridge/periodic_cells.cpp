@@ -47,6 +47,17 @@ std::array<int, 9> PeriodicCells::neighbourhood(int cell) const {
   return around;
 }
 
+std::array<int, 3> PeriodicCells::entering(int cell, int axis, int direction) const {
+  const int cx = cell % nx_, cy = cell / nx_;
+  std::array<int, 3> joined{};
+  for (int k = -1; k <= 1; ++k) {
+    const int x = axis == 0 ? cx + direction : cx + k;
+    const int y = axis == 0 ? cy + k : cy + direction;
+    joined[std::size_t(k + 1)] = ((y + ny_) % ny_) * nx_ + (x + nx_) % nx_;
+  }
+  return joined;
+}
+
 int PeriodicCells::across(int cell, int axis, int direction, bool& wraps) const {
   int cx = cell % nx_, cy = cell / nx_;
   int& c = axis == 0 ? cx : cy;

@@ -25,6 +25,9 @@ class PeriodicCells {
   double y_low(int cell) const { return -0.5 * ly_ + (cell / nx_) * wy_; }
   // The nine cells around a cell (itself included), periodic.
   std::array<int, 9> neighbourhood(int cell) const;
+  // The three cells that join the neighbourhood of `cell` when a particle has just entered it
+  // along axis 0 (x) or 1 (y) in `direction`: the far row or column of its new neighbourhood.
+  std::array<int, 3> entering(int cell, int axis, int direction) const;
   // The cell next to `cell` across its face: axis 0 (x) or 1 (y), direction +1 or -1; and
   // whether that step wraps around the box (then the position moves by -direction L).
   int across(int cell, int axis, int direction, bool& wraps) const;
