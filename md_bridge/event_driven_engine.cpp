@@ -14,8 +14,9 @@ namespace {
 
 constexpr double kSigma = 1.0;  // disk diameter and mass are the units (particle_scene.hpp)
 // Cells hold about this many disks on average (at least sigma wide): fewer cells mean more
-// pairs to test per prediction, more cells more crossing events. Measured best for a dilute
-// gas on this machine (docs/md_benchmarks.md).
+// pairs to test per prediction, more cells more crossing events. For a dilute
+// gas on this machine 0.5, 1 and 2 per cell gave the same speed within the noise of a
+// loaded machine (docs/md_benchmarks.md).
 constexpr double kDisksPerCell = 1.0;
 // The cell edge exceeds sigma by this much, so that a partner at contact is always in the
 // neighbourhood despite the round-off of positions near a face.
@@ -152,7 +153,7 @@ void EventDrivenEngine::fly(Disk& d, double t) const {
 // the soonest collision found so far.
 void EventDrivenEngine::scan(int i, double now, int cell) {
   Disk& a = disks_[std::size_t(i)];
-  for (const int j : cells_->members(cell)) {
+  for (int j = cells_->first(cell); j >= 0; j = cells_->next(j)) {
     if (j == i) continue;
     const Disk& b = disks_[std::size_t(j)];
     const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
@@ -352,7 +353,7 @@ double EventDrivenEngine::smallest_separation() const {
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
     for (const int c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
-      for (const int j : cells_->members(c)) {
+      for (int j = cells_->first(c); j >= 0; j = cells_->next(j)) {
         if (std::size_t(j) <= i) continue;
         const Disk& b = disks_[std::size_t(j)];
         const double dx = minimum_image(a.x - b.x, options_.box_length);

@@ -85,6 +85,8 @@ class EventDrivenEngine final : public ParticleEngine {
   long long collisions_changed() const { return changed_; }
   // Current time and the disks' positions and velocities (xyz triplets) at it.
   double time() const { return t_; }
+  // Entries in the event calendar, stale ones included (N live ones at most).
+  std::size_t calendar_size() const { return calendar_.size(); }
   // The smallest centre distance of any two disks now (sigma = 1 means touching).
   double smallest_separation() const;
 

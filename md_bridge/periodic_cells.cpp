@@ -25,9 +25,10 @@ PeriodicCells::PeriodicCells(double box_length, double box_width, double min_wid
   }
   wx_ = lx_ / nx_;
   wy_ = ly_ / ny_;
-  members_.assign(std::size_t(nx_) * std::size_t(ny_), {});
+  first_.assign(std::size_t(nx_) * std::size_t(ny_), -1);
   cell_.assign(std::size_t(particles), -1);
-  slot_.assign(std::size_t(particles), -1);
+  next_.assign(std::size_t(particles), -1);
+  previous_.assign(std::size_t(particles), -1);
 }
 
 int PeriodicCells::cell_at(double x, double y) const {
@@ -69,25 +70,31 @@ int PeriodicCells::across(int cell, int axis, int direction, bool& wraps) const 
 }
 
 void PeriodicCells::clear() {
-  for (auto& m : members_) m.clear();
+  std::fill(first_.begin(), first_.end(), -1);
   std::fill(cell_.begin(), cell_.end(), -1);
-  std::fill(slot_.begin(), slot_.end(), -1);
+  std::fill(next_.begin(), next_.end(), -1);
+  std::fill(previous_.begin(), previous_.end(), -1);
 }
 
 void PeriodicCells::insert(int particle, int cell) {
-  auto& m = members_[std::size_t(cell)];
-  cell_[std::size_t(particle)] = cell;
-  slot_[std::size_t(particle)] = int(m.size());
-  m.push_back(particle);
+  const std::size_t p = std::size_t(particle);
+  int& head = first_[std::size_t(cell)];
+  cell_[p] = cell;
+  previous_[p] = -1;
+  next_[p] = head;
+  if (head >= 0) previous_[std::size_t(head)] = particle;
+  head = particle;
 }
 
 void PeriodicCells::remove(int particle) {
-  auto& m = members_[std::size_t(cell_[std::size_t(particle)])];
-  const int slot = slot_[std::size_t(particle)];
-  const int last = m.back();
-  m[std::size_t(slot)] = last;
-  slot_[std::size_t(last)] = slot;
-  m.pop_back();
+  const std::size_t p = std::size_t(particle);
+  const int before = previous_[p], after = next_[p];
+  if (before >= 0) {
+    next_[std::size_t(before)] = after;
+  } else {
+    first_[std::size_t(cell_[p])] = after;
+  }
+  if (after >= 0) previous_[std::size_t(after)] = before;
 }
 
 void PeriodicCells::move(int particle, int to) {

@@ -36,14 +36,18 @@ class PeriodicCells {
   void insert(int particle, int cell);
   void move(int particle, int to);
   int cell_of(int particle) const { return cell_[std::size_t(particle)]; }
-  const std::vector<int>& members(int cell) const { return members_[std::size_t(cell)]; }
+  // The members of a cell as a list: first(cell), then next(particle) until -1.
+  int first(int cell) const { return first_[std::size_t(cell)]; }
+  int next(int particle) const { return next_[std::size_t(particle)]; }
 
  private:
   void remove(int particle);
   double lx_, ly_, wx_, wy_;
   int nx_, ny_;
-  std::vector<std::vector<int>> members_;
-  std::vector<int> cell_, slot_;  // per particle: its cell, its index in that cell's members
+  // Doubly linked lists of the members (-1 ends them): a few integers per cell and particle,
+  // so that the grid stays in cache beside the particles.
+  std::vector<int> first_;
+  std::vector<int> cell_, next_, previous_;  // per particle
 };
 
 }  // namespace granvv::md
