@@ -185,6 +185,12 @@ std::vector<KeySpec> rows_without_initial() {
        "time steps per contact duration"},
       {"md.adaptive_stiffness", kBoolean, true, any_value(),
        "lower kn and raise dt as the gas cools, restitution fixed"},
+      {"md.collapse_speed", kReal, 0.01, closed_closed(0, 10),
+       "event_driven: impact speed u0 (sqrt(T0/m)) below which the restitution rises to 1, "
+       "Bizon et al. 1998 (ends inelastic collapse); 0 = off"},
+      {"md.max_collision_rate", kReal, 1000.0, closed_closed(1, 1e9),
+       "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
+       "(event-rate runaway)"},
       {"md.snapshot_interval", kReal, 0.0, non_negative(),
        "H5MD particle snapshots every this much MD time; 0 = none"},
       {"md.checkpoint_interval", kReal, 300.0, non_negative(),

@@ -80,9 +80,9 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
         if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
         last = now;
         const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
-        log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} atom-steps/s ETA {:.1f} s",
-                 member + 1, scene.ensemble, p.t, p.T, p.steps,
-                 p.steps * double(sc.particles) / std::max(p.wall_seconds, 1e-12),
+        const md::EngineCost cost = engine.cost();  // its own unit: atom_steps, collisions
+        log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} {}/s ETA {:.1f} s",
+                 member + 1, scene.ensemble, p.t, p.T, p.steps, cost.per_second(), cost.work_unit,
                  p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
       },
       &checkpointing);

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "md_bridge/event_driven_engine.hpp"
 #include "md_bridge/lammps_engine.hpp"
 
 namespace granvv::md {
@@ -15,6 +16,7 @@ using Maker = std::unique_ptr<ParticleEngine> (*)(const ParticleEngineSetup&);
 const std::vector<std::pair<std::string, Maker>>& engines() {
   static const std::vector<std::pair<std::string, Maker>> rows = {
       {"lammps", &LammpsEngine::make},
+      {"event_driven", &EventDrivenEngine::make},
   };
   return rows;
 }

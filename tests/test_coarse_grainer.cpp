@@ -21,11 +21,11 @@
 
 namespace {
 
+using granvv::fields::FieldSnapshot;
 using granvv::md::BoxEnergies;
 using granvv::md::CoarseGrainer;
 using granvv::md::CoarseGrainGrid;
 using granvv::md::Moments;
-using granvv::fields::FieldSnapshot;
 
 constexpr double kPi = 3.14159265358979323846;
 

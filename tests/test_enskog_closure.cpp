@@ -79,8 +79,8 @@ double adiabat(double phi0, double r, double n0, double T0, double n1) {
 
 TEST(EnskogClosure, SoundSpeedIsTheDerivativeOfPressureAlongTheAdiabat) {
   // c^2 = dp/dn at fixed entropy, by central differences (relative step 1e-5: truncation
-  // ~3e-9 at phi = 0.6, rounding ~1e-10) of p = n T F_p along the adiabat; tolerance 1e-7. Up to phi = 0.6, where the dense
-  // terms dominate (c^2 / T = 26.9 against 2 for the dilute gas).
+  // ~3e-9 at phi = 0.6, rounding ~1e-10) of p = n T F_p along the adiabat; tolerance 1e-7. Up to
+  // phi = 0.6, where the dense terms dominate (c^2 / T = 26.9 against 2 for the dilute gas).
   const double phi0 = 0.3, q = 0.05, r = 1 - 2 * q;
   const EnskogClosure closure({1e-3, q}, phi0, CoolingRate::small_q);
   for (const auto& [n, T] : {std::pair{1.0, 1.0}, {0.3, 2.0}, {2.0, 0.01}}) {

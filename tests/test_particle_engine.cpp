@@ -37,7 +37,7 @@ std::map<std::string, double> numbers(const EngineDetails& details) {
 }
 
 TEST(ParticleEngineRegistry, KnowsLammpsAndRefusesUnknownNamesAndMissingSettings) {
-  EXPECT_EQ(particle_engine_names(), std::vector<std::string>{"lammps"});
+  EXPECT_EQ(particle_engine_names(), (std::vector<std::string>{"lammps", "event_driven"}));
   const auto engine = make_particle_engine("lammps", lammps_setup(0.9));
   EXPECT_EQ(engine->name(), "lammps");
   EXPECT_EQ(engine->log_path(), "none");  // no log_dir
@@ -45,7 +45,8 @@ TEST(ParticleEngineRegistry, KnowsLammpsAndRefusesUnknownNamesAndMissingSettings
     (void)make_particle_engine("hard_disks", lammps_setup(0.9));
     FAIL() << "unknown engine accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("known: lammps"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("known: lammps, event_driven"), std::string::npos)
+        << e.what();
   }
   ParticleEngineSetup missing = lammps_setup(0.9);
   missing.settings.erase("md.steps_per_contact");

@@ -1,0 +1,448 @@
+#include "md_bridge/event_driven_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "md_bridge/hard_disk_collision.hpp"
+
+namespace granvv::md {
+
+namespace {
+
+constexpr double kSigma = 1.0;  // disk diameter and mass are the units (particle_scene.hpp)
+// Cells hold about this many disks on average (at least sigma wide): fewer cells mean more
+// pairs to test per prediction, more cells more crossing events. For a dilute
+// gas on this machine 0.5, 1 and 2 per cell gave the same speed within the noise of a
+// loaded machine (docs/md_benchmarks.md).
+constexpr double kDisksPerCell = 1.0;
+// The cell edge exceeds sigma by this much, so that a partner at contact is always in the
+// neighbourhood despite the round-off of positions near a face.
+constexpr double kCellMargin = 1e-9;
+// After this many collisions per disk the disks are put in the order of their cells again (at
+// the end of a segment: positions synchronised, calendar made anew), so that neighbours stay
+// near each other in memory as the gas mixes.
+constexpr double kCollisionsPerReorder = 20.0;
+
+double required_setting(const EngineSettings& settings, const std::string& key) {
+  const auto found = settings.find(key);
+  if (found == settings.end())
+    throw std::invalid_argument("the event-driven engine needs the setting " + key);
+  return found->second;
+}
+
+}  // namespace
+
+EventDrivenEngine::EventDrivenEngine(EventDrivenOptions options)
+    : options_(std::move(options)), made_(std::chrono::steady_clock::now()) {
+  if (!(options_.collapse_speed >= 0.0 && std::isfinite(options_.collapse_speed)))
+    throw std::invalid_argument("md.collapse_speed must be >= 0");
+  if (!(options_.max_collision_rate > 0.0))
+    throw std::invalid_argument("md.max_collision_rate must be > 0");
+  if (options_.virial_bins < 1) throw std::invalid_argument("md.bins must be >= 1");
+  const double density = double(options_.particles) / (options_.box_length * options_.box_width);
+  const double width = std::max(kSigma * (1.0 + kCellMargin), std::sqrt(kDisksPerCell / density));
+  cells_ = std::make_unique<PeriodicCells>(
+      options_.box_length, options_.box_width,
+      std::min(width, std::min(options_.box_length, options_.box_width) / 3.0),
+      int(options_.particles));
+  if (cells_->cell_length() < kSigma || cells_->cell_width() < kSigma) {
+    throw std::invalid_argument("the event-driven engine needs a box at least 3 sigma wide");
+  }
+}
+
+std::unique_ptr<ParticleEngine> EventDrivenEngine::make(const ParticleEngineSetup& setup) {
+  EventDrivenOptions o;
+  o.restitution = setup.scene.restitution;
+  o.box_length = setup.scene.box_length;
+  o.box_width = setup.scene.box_width;
+  o.particles = setup.scene.particles;
+  o.collapse_speed = required_setting(setup.settings, "md.collapse_speed");
+  o.max_collision_rate = required_setting(setup.settings, "md.max_collision_rate");
+  o.virial_bins = int(std::lround(required_setting(setup.settings, "md.bins")));
+  o.comm = setup.comm;
+  return std::make_unique<EventDrivenEngine>(std::move(o));
+}
+
+CollisionRuleCheck EventDrivenEngine::check_collision_rule() {
+  // Two disks alone in this engine's box, head on along x at approach speed kCheckSpeed.
+  EventDrivenOptions alone = options_;
+  alone.particles = 2;
+  alone.comm = MPI_COMM_SELF;
+  EventDrivenEngine pair(alone);
+  const double u = std::max(kCheckSpeed, 2.0 * options_.collapse_speed);
+  // 1.5 sigma apart (at most half of any box the engine runs): they touch at t = 0.5 / u.
+  pair.start({-0.75, 0.0, 0.0, 0.75, 0.0, 0.0}, {0.5 * u, 0.0, 0.0, -0.5 * u, 0.0, 0.0}, 0.0);
+  pair.advance_to(1.0 / u);
+  const double recoil = pair.v_[3] - pair.v_[0];
+  const double r = pair.collisions() == 1 ? recoil / u : 0.0;
+  std::ostringstream what;
+  what << "a head-on collision at approach speed " << u
+       << " through the event-driven engine: r = " << r
+       << "; below md.collapse_speed = " << options_.collapse_speed
+       << " r rises to 1 (Bizon et al. 1998)";
+  return {r, what.str()};
+}
+
+void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<double>& v,
+                              double t) {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (initialised) MPI_Comm_rank(options_.comm, &rank_);
+  const int n = int(x.size() / 3);
+  if (n != options_.particles) {
+    throw std::invalid_argument("event-driven engine: " + std::to_string(n) +
+                                " particles for a scene of " + std::to_string(options_.particles));
+  }
+  // Disks in the order of their cells, so that neighbours lie near each other in memory.
+  std::vector<std::pair<int, int>> by_cell(x.size() / 3);
+  for (int i = 0; i < n; ++i) {
+    by_cell[std::size_t(i)] = {
+        cells_->cell_at(periodic_image(x[3 * std::size_t(i)], options_.box_length),
+                        periodic_image(x[3 * std::size_t(i) + 1], options_.box_width)),
+        i};
+  }
+  std::sort(by_cell.begin(), by_cell.end());
+  disks_.assign(std::size_t(n), Disk{});
+  id_.assign(std::size_t(n), 0);
+  cells_->clear();
+  for (int k = 0; k < n; ++k) {
+    const auto [cell, i] = by_cell[std::size_t(k)];
+    Disk& d = disks_[std::size_t(k)];
+    d.x = periodic_image(x[3 * std::size_t(i)], options_.box_length);
+    d.y = periodic_image(x[3 * std::size_t(i) + 1], options_.box_width);
+    d.vx = v[3 * std::size_t(i)];
+    d.vy = v[3 * std::size_t(i) + 1];
+    d.t = t;
+    id_[std::size_t(k)] = i;
+    cells_->insert(k, cell);
+  }
+  t_ = t;
+  calendar_.clear();
+  for (int i = 0; i < n; ++i) predict(i, t);
+  mass_.assign(std::size_t(n), 1.0);
+  x_.assign(3 * std::size_t(n), 0.0);
+  v_.assign(3 * std::size_t(n), 0.0);
+  virial_sum_.assign(std::size_t(options_.virial_bins), 0.0);
+  virial_ = CollisionVirial{t, t, 0.0, std::vector<double>(std::size_t(options_.virial_bins), 0.0)};
+  collision_rate_ = 0.0;
+  synchronise();
+}
+
+void EventDrivenEngine::set_up(const ParticleSample& sample) {
+  start(sample.x, sample.v, 0.0);
+  events_ = collisions_ = crossings_ = changed_ = ordered_at_ = 0;
+  ++runs_;
+}
+
+double EventDrivenEngine::minimum_image(double d, double length) const {
+  if (d > 0.5 * length) return d - length;
+  if (d < -0.5 * length) return d + length;
+  return d;
+}
+
+void EventDrivenEngine::fly(Disk& d, double t) const {
+  d.x += d.vx * (t - d.t);
+  d.y += d.vy * (t - d.t);
+  d.t = t;
+}
+
+// Touching a disk of `cell` (at its position now, computed without moving it) sooner than
+// the soonest collision found so far.
+void EventDrivenEngine::scan(int i, double now, int cell) {
+  Disk& a = disks_[std::size_t(i)];
+  for (int j = cells_->first(cell); j >= 0; j = cells_->next(j)) {
+    if (j == i) continue;
+    const Disk& b = disks_[std::size_t(j)];
+    const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
+    const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
+    const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
+    if (now + dt < a.soonest) {
+      a.soonest = now + dt;
+      a.partner = j;
+      a.partner_count = b.count;
+    }
+  }
+}
+
+// The earlier of its soonest collision and leaving its cell.
+void EventDrivenEngine::schedule(int i, double now) {
+  const Disk& a = disks_[std::size_t(i)];
+  const int cell = cells_->cell_of(i);
+  ParticleEvent e;
+  e.i = i;
+  e.count_i = a.count;
+  e.t = a.soonest;
+  e.partner = a.partner;
+  e.count_partner = a.partner_count;
+  const double x_low = cells_->x_low(cell), y_low = cells_->y_low(cell);
+  if (a.vx != 0.0) {
+    const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
+    const double t = now + std::max(0.0, (edge - a.x) / a.vx);
+    if (t < e.t) e.t = t, e.partner = -1;
+  }
+  if (a.vy != 0.0) {
+    const double edge = a.vy > 0.0 ? y_low + cells_->cell_width() : y_low;
+    const double t = now + std::max(0.0, (edge - a.y) / a.vy);
+    if (t < e.t) e.t = t, e.partner = -2;
+  }
+  if (e.t == kNever) return;  // at rest and alone: others will find it
+  calendar_.push(e);
+}
+
+void EventDrivenEngine::predict(int i, double now) {
+  Disk& a = disks_[std::size_t(i)];
+  fly(a, now);
+  a.soonest = kNever;
+  a.partner = -1;
+  for (const int c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
+  schedule(i, now);
+}
+
+// Disks of the old neighbourhood that changed course since the last scan have looked for this
+// one themselves; those that did not cannot collide sooner than the soonest found then, unless
+// that partner has changed course (then the whole neighbourhood is scanned again).
+void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int direction) {
+  Disk& a = disks_[std::size_t(i)];
+  if (a.partner >= 0 && disks_[std::size_t(a.partner)].count != a.partner_count) {
+    predict(i, now);
+    return;
+  }
+  fly(a, now);
+  for (const int c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
+  schedule(i, now);
+}
+
+void EventDrivenEngine::collide(int i, int j, double now) {
+  Disk& a = disks_[std::size_t(i)];
+  Disk& b = disks_[std::size_t(j)];
+  fly(a, now);
+  fly(b, now);
+  const double dx = minimum_image(a.x - b.x, options_.box_length);
+  const double dy = minimum_image(a.y - b.y, options_.box_width);
+  // The impulse along the separation itself, not a normalised normal: then the elastic map
+  // conserves energy in floating point without the bias of rounding |n| to 1 (1e-12 over 1e7
+  // collisions needs it).
+  const double separation2 = dx * dx + dy * dy;
+  const double closing = (a.vx - b.vx) * dx + (a.vy - b.vy) * dy;  // -u |r|
+  if (closing < 0.0) {
+    const double distance = std::sqrt(separation2);
+    const double approach = -closing / distance;
+    const double r = impact_restitution(options_.restitution, approach, options_.collapse_speed);
+    if (r != options_.restitution) ++changed_, ++all_changed_;
+    const double k = normal_impulse(-closing, r) / separation2;  // J / |r|
+    a.vx += k * dx;
+    a.vy += k * dy;
+    b.vx -= k * dx;
+    b.vy -= k * dy;
+    approach_sum_ += approach;
+    recoil_sum_ += r * approach;
+    // The pair's midpoint picks the bin of its virial, r_ij . Delta p_i = k |r|^2.
+    const double mid = periodic_image(b.x + 0.5 * dx, options_.box_length);
+    const int bin =
+        std::clamp(int(std::floor((mid / options_.box_length + 0.5) * options_.virial_bins)), 0,
+                   options_.virial_bins - 1);
+    virial_sum_[std::size_t(bin)] += k * separation2;
+  }
+  ++a.count;
+  ++b.count;
+  ++collisions_, ++all_collisions_, ++segment_collisions_;
+  predict(i, now);
+  predict(j, now);
+}
+
+void EventDrivenEngine::cross(int i, int axis, double now) {
+  Disk& a = disks_[std::size_t(i)];
+  fly(a, now);
+  const int direction = (axis == 0 ? a.vx : a.vy) > 0.0 ? 1 : -1;
+  bool wraps = false;
+  const int to = cells_->across(cells_->cell_of(i), axis, direction, wraps);
+  if (wraps) {
+    if (axis == 0) a.x -= direction * options_.box_length;
+    if (axis == 1) a.y -= direction * options_.box_width;
+  }
+  cells_->move(i, to);
+  ++crossings_, ++all_crossings_;
+  predict_after_crossing(i, now, axis, direction);
+}
+
+double EventDrivenEngine::advance_to(double t) {
+  if (disks_.empty()) throw std::logic_error("EventDrivenEngine::advance_to before set_up");
+  const double begin = t_;
+  segment_collisions_ = 0;
+  std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
+  const double n = double(disks_.size());
+  const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
+  while (!calendar_.empty() && calendar_.next().t <= t) {
+    const ParticleEvent e = calendar_.next();
+    calendar_.pop();
+    const Disk& a = disks_[std::size_t(e.i)];
+    if (e.count_i != a.count) continue;  // stale: the disk has collided since
+    if (e.is_collision() && e.count_partner != disks_[std::size_t(e.partner)].count) {
+      predict(e.i, e.t);  // the partner changed course: look again from here
+      continue;
+    }
+    ++events_, ++all_events_;
+    if (e.is_collision()) {
+      collide(e.i, e.partner, e.t);
+      if (double(segment_collisions_) > budget) {
+        std::ostringstream why;
+        why << "event-driven engine: event-rate runaway at t = " << e.t << " (from t = " << begin
+            << " to " << t << ", " << segment_collisions_ << " collisions of " << disks_.size()
+            << " disks, beyond md.max_collision_rate = " << options_.max_collision_rate
+            << " per disk and unit time): inelastic collapse; raise md.collapse_speed";
+        throw std::runtime_error(why.str());
+      }
+    } else {
+      cross(e.i, -1 - e.partner, e.t);
+    }
+  }
+  t_ = t;
+  const double interval = t - begin;
+  virial_.t_begin = begin;
+  virial_.t_end = t;
+  virial_.box = 0.0;
+  const double bin_area = options_.box_length * options_.box_width / options_.virial_bins;
+  for (std::size_t k = 0; k < virial_sum_.size(); ++k) {
+    virial_.bins[k] = interval > 0.0 ? virial_sum_[k] / (2.0 * bin_area * interval) : 0.0;
+    virial_.box += virial_.bins[k] / double(virial_sum_.size());
+  }
+  collision_rate_ = interval > 0.0 ? 2.0 * double(segment_collisions_) / (n * interval) : 0.0;
+  synchronise();
+  if (double(collisions_ - ordered_at_) > kCollisionsPerReorder * n) {
+    const CollisionVirial last = virial_;
+    const double rate = collision_rate_;
+    start(x_, v_, t_);
+    virial_ = last;
+    collision_rate_ = rate;
+    ordered_at_ = collisions_;
+  }
+  return t_;
+}
+
+void EventDrivenEngine::synchronise() {
+  for (std::size_t i = 0; i < disks_.size(); ++i) {
+    Disk& d = disks_[i];
+    fly(d, t_);
+    const std::size_t id = std::size_t(id_[i]);
+    x_[3 * id] = periodic_image(d.x, options_.box_length);
+    x_[3 * id + 1] = periodic_image(d.y, options_.box_width);
+    v_[3 * id] = d.vx;
+    v_[3 * id + 1] = d.vy;
+  }
+}
+
+LocalParticles EventDrivenEngine::local_particles() {
+  if (rank_ != 0) return {};
+  return {x_.data(), v_.data(), mass_.data(), int(disks_.size())};
+}
+
+ParticleFrame EventDrivenEngine::gather_frame() {
+  return {x_, v_};
+}
+
+EngineValues EventDrivenEngine::series_values() const {
+  return {{"collision_virial_pressure", virial_.box},
+          {"collisions_per_particle_time", collision_rate_}};
+}
+
+double EventDrivenEngine::smallest_separation() const {
+  double closest = kNever;
+  for (std::size_t i = 0; i < disks_.size(); ++i) {
+    const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
+    for (const int c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
+      for (int j = cells_->first(c); j >= 0; j = cells_->next(j)) {
+        if (std::size_t(j) <= i) continue;
+        const Disk& b = disks_[std::size_t(j)];
+        const double dx = minimum_image(a.x - b.x, options_.box_length);
+        const double dy = minimum_image(a.y - b.y, options_.box_width);
+        closest = std::min(closest, std::sqrt(dx * dx + dy * dy));
+      }
+    }
+  }
+  return closest;
+}
+
+EngineState EventDrivenEngine::save_state(bool with_particles) {
+  EngineState state;
+  if (with_particles && !disks_.empty()) state.particles = gather_frame();
+  state.numbers = {{"t", t_},
+                   {"events", double(events_)},
+                   {"collisions", double(collisions_)},
+                   {"crossings", double(crossings_)},
+                   {"changed", double(changed_)},
+                   {"runs", double(runs_)},
+                   {"all_events", double(all_events_)},
+                   {"all_collisions", double(all_collisions_)},
+                   {"all_crossings", double(all_crossings_)},
+                   {"all_changed", double(all_changed_)},
+                   {"approach_sum", approach_sum_},
+                   {"recoil_sum", recoil_sum_},
+                   {"wall_seconds", cost().wall_seconds}};
+  return state;
+}
+
+void EventDrivenEngine::restore_state(const EngineState& state) {
+  std::map<std::string, double> number;
+  for (const auto& [name, value] : state.numbers) number[name] = value;
+  const auto get = [&](const std::string& name) {
+    const auto found = number.find(name);
+    if (found == number.end() || !std::isfinite(found->second))
+      throw std::invalid_argument("event-driven engine state without a finite '" + name + "'");
+    return found->second;
+  };
+  const auto& p = state.particles;
+  if (!p.x.empty() &&
+      (p.x.size() != 3 * std::size_t(options_.particles) || p.v.size() != p.x.size())) {
+    throw std::invalid_argument("event-driven engine state with " + std::to_string(p.x.size() / 3) +
+                                " particles for a scene of " + std::to_string(options_.particles));
+  }
+  const double t = get("t");
+  events_ = std::llround(get("events"));
+  collisions_ = std::llround(get("collisions"));
+  crossings_ = std::llround(get("crossings"));
+  changed_ = std::llround(get("changed"));
+  runs_ = int(std::lround(get("runs")));
+  all_events_ = std::llround(get("all_events"));
+  all_collisions_ = std::llround(get("all_collisions"));
+  all_crossings_ = std::llround(get("all_crossings"));
+  all_changed_ = std::llround(get("all_changed"));
+  approach_sum_ = get("approach_sum");
+  recoil_sum_ = get("recoil_sum");
+  wall_before_ = get("wall_seconds");
+  made_ = std::chrono::steady_clock::now();
+  disks_.clear();
+  t_ = t;
+  ordered_at_ = collisions_;
+  if (!p.x.empty()) start(p.x, p.v, t);
+}
+
+EngineCost EventDrivenEngine::cost() const {
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - made_).count();
+  return {wall_before_ + wall, double(all_collisions_), "collisions"};
+}
+
+EngineDetails EventDrivenEngine::details() const {
+  const EngineCost c = cost();
+  EngineDetails d = {
+      {"events", all_events_},
+      {"events_per_second", double(all_events_) / std::max(c.wall_seconds, 1e-12)},
+      {"crossings", all_crossings_},
+      {"collapse_rule.rule",
+       std::string("restitution 1 - (1 - r)(u/u0)^(3/4) below impact speed u0 (Bizon et al., "
+                   "PRL 80, 57 (1998))")},
+      {"collapse_rule.collapse_speed", options_.collapse_speed},
+      {"collapse_rule.collisions_changed", all_changed_},
+      {"collapse_rule.fraction_changed",
+       all_collisions_ > 0 ? double(all_changed_) / double(all_collisions_) : 0.0},
+      {"max_collision_rate", options_.max_collision_rate},
+      {"cells.columns", static_cast<long long>(cells_->columns())},
+      {"cells.rows", static_cast<long long>(cells_->rows())}};
+  if (approach_sum_ > 0.0) d.push_back({"restitution_effective", recoil_sum_ / approach_sum_});
+  return d;
+}
+
+}  // namespace granvv::md

@@ -1,0 +1,143 @@
+#pragma once
+// The event-driven particle engine (docs/physics.md §10): smooth inelastic hard disks
+// (sigma = m = 1) in a periodic box, moved from one exact binary collision to the next. No
+// contact time, no overlap, no time step: between events every disk flies straight, with its
+// own clock; positions are brought to a common time only when the run looks at them (the end
+// of every advance_to). Events (collisions and cell crossings) come from an EventCalendar
+// (event_calendar.hpp) over a PeriodicCells grid (periodic_cells.hpp); the collision kernel
+// and the collapse rule are hard_disk_collision.hpp.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "md_bridge/event_calendar.hpp"
+#include "md_bridge/particle_engine.hpp"
+#include "md_bridge/periodic_cells.hpp"
+
+namespace granvv::md {
+
+struct EventDrivenOptions {
+  // Set from the scene and the md.* keys (their defaults are in the case schema only).
+  double restitution = 1.0;  // r, the scene's
+  double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
+  double box_width = 0.0;
+  long long particles = 0;
+  double collapse_speed = 0.0;      // md.collapse_speed: u0 of impact_restitution
+  double max_collision_rate = 0.0;  // md.max_collision_rate: per particle per unit MD time
+  int virial_bins = 1;              // md.bins: the collision virial per bin along x
+  MPI_Comm comm = MPI_COMM_WORLD;
+};
+
+// The collisional (virial) part of the pressure over the last sampled interval: for hard disks
+// in 2D, p_c = sum over collisions of r_ij . Delta p_i / (2 A Delta t), with r_ij . Delta p_i =
+// sigma J the separation at contact times the impulse (docs/physics.md §10). `bins` along x
+// (md.bins bins of area Lx Ly / bins) take each collision at the midpoint of its pair; box is
+// their mean. The kinetic part n T is the coarse-grainer's.
+struct CollisionVirial {
+  double t_begin = 0.0, t_end = 0.0;  // the interval (MD time); empty before the first advance
+  double box = 0.0;
+  std::vector<double> bins;
+};
+
+class EventDrivenEngine final : public ParticleEngine {
+ public:
+  // Throws std::invalid_argument (naming the md.* key or the box) for settings it cannot run.
+  explicit EventDrivenEngine(EventDrivenOptions options);
+  // From the registry: the scene and the keys md.collapse_speed, md.max_collision_rate, md.bins.
+  static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
+
+  std::string name() const override { return "event_driven"; }
+  std::string log_path() const override { return "none"; }
+
+  // A head-on collision at approach speed kCheckSpeed (above md.collapse_speed) through the
+  // engine's own collision code: the restitution its collisions have.
+  CollisionRuleCheck check_collision_rule() override;
+
+  void set_up(const ParticleSample& sample) override;
+  MPI_Comm comm() const override { return options_.comm; }
+  double time_resolution() const override { return 0.0; }
+  // Processes every event up to t and brings all disks to t. Throws std::runtime_error
+  // (event-rate runaway) if the segment needs more than md.max_collision_rate N (t - now) + N
+  // collisions: inelastic collapse, which the collapse rule should have prevented.
+  double advance_to(double t) override;
+  long long steps() const override { return events_; }  // events of this run
+
+  // Every rank holds and moves all disks (the same dynamics on each); rank 0 hands them to the
+  // coarse-grainer, the others none.
+  LocalParticles local_particles() override;
+  ParticleFrame gather_frame() override;
+  // collision_virial_pressure (the box's, CollisionVirial) and collisions_per_particle_time
+  // (2 collisions / (N dt)) over the last interval; 0 at the first sample (no interval yet).
+  EngineValues series_values() const override;
+  EngineState save_state(bool with_particles) override;
+  void restore_state(const EngineState& state) override;
+  EngineCost cost() const override;  // collisions
+  // events, events_per_second, crossings, restitution_effective, collapse_rule.{rule,
+  // collapse_speed, collisions_changed, fraction_changed}, max_collision_rate, cells.
+  EngineDetails details() const override;
+
+  // The collision virial over the last interval of advance_to (for the pressure: kinetic plus
+  // collisional).
+  const CollisionVirial& collision_virial() const { return virial_; }
+  long long collisions() const { return collisions_; }  // of this run
+  long long collisions_changed() const { return changed_; }
+  // Current time and the disks' positions and velocities (xyz triplets) at it.
+  double time() const { return t_; }
+  // Entries in the event calendar, stale ones included (N live ones at most).
+  std::size_t calendar_size() const { return calendar_.size(); }
+  // The smallest centre distance of any two disks now (sigma = 1 means touching).
+  double smallest_separation() const;
+
+  static constexpr double kCheckSpeed = 1.0;
+
+ private:
+  struct Disk {
+    double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
+    double t = 0.0;  // its own clock: (x, y) is its position at t
+    // The soonest collision with a disk of its neighbourhood found since its last collision
+    // (absolute time, the partner and the partner's count then; kNever, -1 if none).
+    double soonest = 0.0;
+    int partner = -1;
+    std::uint32_t partner_count = 0;
+    std::uint32_t count = 0;
+  };
+  void start(const std::vector<double>& x, const std::vector<double>& v, double t);
+  void fly(Disk& d, double t) const;
+  // Its next event from a scan of its whole neighbourhood (after it collided, or its partner
+  // did), or after it entered a new cell from the three cells that joined the neighbourhood.
+  void predict(int i, double now);
+  void predict_after_crossing(int i, double now, int axis, int direction);
+  void scan(int i, double now, int cell);
+  void schedule(int i, double now);
+  void collide(int i, int j, double now);
+  void cross(int i, int axis, double now);
+  void synchronise();
+  double minimum_image(double d, double length) const;
+
+  EventDrivenOptions options_;
+  std::chrono::steady_clock::time_point made_;
+  double wall_before_ = 0.0;
+  int rank_ = 0;
+  std::vector<Disk> disks_;  // ordered by cell at the start (memory near neighbours)
+  std::vector<int> id_;      // particle ID of each disk
+  std::unique_ptr<PeriodicCells> cells_;
+  EventCalendar calendar_;
+  std::vector<double> x_, v_, mass_;  // the disks at t_ (xyz), for the run loop
+  double t_ = 0.0;
+  // This run.
+  long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0;
+  long long ordered_at_ = 0;  // collisions_ when the disks were last put in cell order
+  // Over every run.
+  int runs_ = 0;
+  long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0;
+  double approach_sum_ = 0.0, recoil_sum_ = 0.0;  // of the normal speeds, for r measured
+  // The interval being accumulated and the last one finished.
+  std::vector<double> virial_sum_;  // sum of sigma J per bin
+  long long segment_collisions_ = 0;
+  CollisionVirial virial_;
+  double collision_rate_ = 0.0;
+};
+
+}  // namespace granvv::md
