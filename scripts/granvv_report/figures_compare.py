@@ -571,7 +571,7 @@ def fig_cmp_closures(run):
     ax_a.legend(loc="best", fontsize=7.8)
     ax_b.set_xlabel(T_UNIT)
     ax_b.set_ylabel(r"peak density $n_{\max}$  [$n_0$] (on the bins)")
-    ax_b.set_title("(b) peak density; vertical lines: each closure's agreement window")
+    ax_b.set_title("(b) peak density (lines: agreement windows)")
     ax_b.legend(loc="best", fontsize=7.8)
     md_time_axis(ax_b, L)
     return Drawn(fig, measured)
