@@ -371,6 +371,7 @@ def fig_cmp_metrics(run):
         mark_window(a, C, t, label=a is ax_f)
         a.set_xlabel(T_UNIT)
         md_time_axis(a, L)
+        mark_validity(a, run.hydro_summary("validity"))
     ax_f.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), fontsize=7.8, ncol=2)
     ax_z.legend(loc="best", fontsize=7.8)
     ax_n.legend(loc="best", fontsize=7.2, ncol=2)
