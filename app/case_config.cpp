@@ -196,6 +196,17 @@ std::optional<Value> extract(const KeySpec& spec, const toml::node& node) {
       }
       return Value(std::move(named));
     }
+    case ValueType::string_array: {
+      const auto* arr = node.as_array();
+      if (!arr) return std::nullopt;
+      std::vector<std::string> xs;
+      for (const toml::node& elem : *arr) {
+        const auto* str = elem.as_string();
+        if (!str) return std::nullopt;
+        xs.push_back(str->get());
+      }
+      return Value(std::move(xs));
+    }
   }
   return std::nullopt;
 }
@@ -214,7 +225,11 @@ Value default_value(const KeySpec& spec, const std::string& source) {
     }
     case Default::Kind::empty_array:
       if (spec.type == ValueType::integer_array) return Value(std::vector<long long>{});
+      if (spec.type == ValueType::string_array) return Value(std::vector<std::string>{});
       return Value(std::vector<double>{});
+    case Default::Kind::list_of_key:  // resolved where the other key's value is known
+      throw std::logic_error("case schema: " + spec.key + " takes its default from " +
+                             spec.default_value.key);
     case Default::Kind::value: {
       const Value& v = spec.default_value.value;
       if (spec.type == ValueType::real && std::holds_alternative<long long>(v)) {
@@ -261,6 +276,10 @@ void insert_value(toml::table& root, const std::string& key, const Value& value)
           toml::table named;
           for (const auto& [name, x] : v) named.insert_or_assign(name, x);
           t->insert_or_assign(leaf, std::move(named));
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+          toml::array arr;
+          for (const std::string& x : v) arr.push_back(x);
+          t->insert_or_assign(leaf, std::move(arr));
         } else {
           t->insert_or_assign(leaf, v);
         }
@@ -464,7 +483,15 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
                             expected_phrase(spec) + " (" + spec.description + ")");
         continue;
       }
-      config.values_.emplace(spec.key, default_value(spec, source));
+      if (spec.default_value.kind == Default::Kind::list_of_key) {
+        // The other key comes earlier in the schema; if it was refused, so is nothing here.
+        const auto other = config.values_.find(spec.default_value.key);
+        if (other == config.values_.end()) continue;
+        config.values_.emplace(
+            spec.key, Value(std::vector<std::string>{std::get<std::string>(other->second)}));
+      } else {
+        config.values_.emplace(spec.key, default_value(spec, source));
+      }
       config.origins_.emplace(spec.key, "default");
       continue;
     }
@@ -568,6 +595,9 @@ std::vector<double> CaseConfig::reals(std::string_view key) const {
 }
 std::vector<long long> CaseConfig::integers(std::string_view key) const {
   return std::get<std::vector<long long>>(checked(key, ValueType::integer_array));
+}
+std::vector<std::string> CaseConfig::strings(std::string_view key) const {
+  return std::get<std::vector<std::string>>(checked(key, ValueType::string_array));
 }
 
 std::string CaseConfig::name() const {

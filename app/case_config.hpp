@@ -51,6 +51,7 @@ class CaseConfig {
   bool boolean(std::string_view key) const;
   std::string string(std::string_view key) const;
   std::vector<double> reals(std::string_view key) const;
+  std::vector<std::string> strings(std::string_view key) const;
   std::vector<long long> integers(std::string_view key) const;
   const Value& value(std::string_view key) const;  // any type
 

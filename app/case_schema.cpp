@@ -24,6 +24,7 @@ constexpr auto kBoolean = ValueType::boolean;
 constexpr auto kString = ValueType::string;
 constexpr auto kReals = ValueType::real_array;
 constexpr auto kIntegers = ValueType::integer_array;
+constexpr auto kStrings = ValueType::string_array;
 const Default kRequired = Default::required();
 const Default kFileStem = Default::file_stem();
 const Default kEmpty = Default::empty_array();
@@ -212,11 +213,14 @@ std::vector<KeySpec> rows_without_initial() {
        "a field agrees at a time when at least this fraction of its bins agree"},
       {"compare.density_modes", kInteger, 0, closed_closed(0, 1e4),
        "track the density Fourier modes k = 1..this against linear theory (0 = none)"},
+      {"compare.closures", kStrings, Default::list_of_key("hydro.closure"),
+       distinct_choices(hydro::closure_names()),
+       "the hydro closures run against the one particle ensemble, each compared on its own "
+       "(default: [hydro.closure]); the first fills the compare and hydro blocks"},
 
       // [atlas]: what `granvv atlas` judges and the grid of the hydro's cost knobs
       // (docs/atlas.md). Empty lists take the atlas's defaults around the case's own setting.
-      {"atlas.observables", kString, "scene",
-       any_value(),
+      {"atlas.observables", kString, "scene", any_value(),
        "observables judged, comma-separated; \"scene\" = thermal_energy for homogeneous "
        "cooling, else crossing_times, thermal_energy, kinetic_energy, field_n, field_v_x, "
        "field_T"},
@@ -484,6 +488,11 @@ Constraint one_of(std::vector<std::string> choices) {
   c.choices = std::move(choices);
   return c;
 }
+Constraint distinct_choices(std::vector<std::string> choices) {
+  Constraint c = one_of(std::move(choices));
+  c.distinct_non_empty = true;
+  return c;
+}
 Constraint increasing(Constraint each) {
   each.strictly_increasing = true;
   return each;
@@ -541,11 +550,36 @@ bool number_ok(const Constraint& c, double x) {
 }
 
 bool is_array(ValueType t) {
-  return t == ValueType::real_array || t == ValueType::integer_array;
+  return t == ValueType::real_array || t == ValueType::integer_array ||
+         t == ValueType::string_array;
 }
 
 std::string with_description(std::string text, const KeySpec& spec) {
   return spec.description.empty() ? text : text + " (" + spec.description + ")";
+}
+
+// Why the elements of a string array are not allowed (Constraint::choices, distinct_non_empty).
+std::optional<std::string> string_array_violation(const KeySpec& spec,
+                                                  const std::vector<std::string>& xs) {
+  const Constraint& c = spec.constraint;
+  if (c.distinct_non_empty && xs.empty()) {
+    return with_description("must name at least one, each " + scalar_text(c), spec);
+  }
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const std::string element = "element " + std::to_string(i + 1);
+    if (!valid_utf8(xs[i])) return with_description(element + " must be valid UTF-8 text", spec);
+    if (!c.choices.empty() &&
+        std::find(c.choices.begin(), c.choices.end(), xs[i]) == c.choices.end()) {
+      return with_description("every element must be " + scalar_text(c) + ", but " + element +
+                                  " is " + toml_quoted(xs[i]),
+                              spec);
+    }
+    if (c.distinct_non_empty && std::find(xs.begin(), xs.begin() + i, xs[i]) != xs.begin() + i) {
+      return with_description(element + " (" + toml_quoted(xs[i]) + ") repeats an earlier one",
+                              spec);
+    }
+  }
+  return std::nullopt;
 }
 
 template <typename T>
@@ -621,6 +655,7 @@ std::optional<std::string> closest_match(std::string_view wrong,
 
 std::string Constraint::text() const {
   std::string s = scalar_text(*this);
+  if (distinct_non_empty) return "at least one, none repeated, each " + s;
   if (!strictly_increasing) return s;
   return s.empty() ? "strictly increasing" : "each " + s + ", strictly increasing";
 }
@@ -641,6 +676,8 @@ std::string type_phrase(ValueType type) {
       return "an array of integers";
     case ValueType::real_table:
       return "a table of named reals";
+    case ValueType::string_array:
+      return "an array of strings";
   }
   return "a value";
 }
@@ -708,6 +745,8 @@ std::optional<std::string> constraint_violation(const KeySpec& spec, const Value
         }
       }
       return std::nullopt;
+    case ValueType::string_array:
+      return string_array_violation(spec, std::get<std::vector<std::string>>(value));
   }
   return std::nullopt;
 }
@@ -859,6 +898,11 @@ std::string format_value(const Value& value) {
         items.push_back((bare ? name : toml_quoted(name)) + " = " + format_real(x));
       }
       return items.empty() ? "{}" : "{ " + join(items, ", ") + " }";
+    }
+    std::string operator()(const std::vector<std::string>& xs) const {
+      std::vector<std::string> items;
+      for (const std::string& x : xs) items.push_back(toml_quoted(x));
+      return "[" + join(items, ", ") + "]";
     }
   };
   return std::visit(Visitor{}, value);

@@ -20,17 +20,26 @@ namespace granvv::app {
 class CaseConfig;
 
 // The order matches the alternatives of Value.
-enum class ValueType { real, integer, boolean, string, real_array, integer_array, real_table };
+enum class ValueType {
+  real,
+  integer,
+  boolean,
+  string,
+  real_array,
+  integer_array,
+  real_table,
+  string_array
+};
 
 // A table of named reals, such as [initial.constants]: name -> value.
 using RealTable = std::map<std::string, double>;
 
 // A resolved value; Value::index() == static_cast<std::size_t>(ValueType).
 using Value = std::variant<double, long long, bool, std::string, std::vector<double>,
-                           std::vector<long long>, RealTable>;
+                           std::vector<long long>, RealTable, std::vector<std::string>>;
 
 // "a real", "an integer", "a boolean", "a string", "an array of reals", "an array of integers",
-// "a table of named reals".
+// "a table of named reals", "an array of strings".
 std::string type_phrase(ValueType type);
 
 struct Default {
@@ -39,9 +48,11 @@ struct Default {
     required,     // the case must give the key
     file_stem,    // the stem of the case file name (string keys)
     empty_array,  // [] (array keys)
+    list_of_key,  // [the value of the string key `key`] (string-array keys; `key` comes first)
   };
   Kind kind = Kind::required;
   Value value{};
+  std::string key;  // list_of_key
 
   Default(double v) : kind(Kind::value), value(v) {}
   Default(int v) : kind(Kind::value), value(static_cast<long long>(v)) {}
@@ -53,6 +64,11 @@ struct Default {
   static Default required() { return Default(Kind::required); }
   static Default file_stem() { return Default(Kind::file_stem); }
   static Default empty_array() { return Default(Kind::empty_array); }
+  static Default list_of_key(std::string key) {
+    Default d(Kind::list_of_key);
+    d.key = std::move(key);
+    return d;
+  }
 
  private:
   explicit Default(Kind k) : kind(k) {}
@@ -65,7 +81,8 @@ constexpr std::size_t kMaxNameBytes = 255;
 struct Constraint {
   std::optional<double> min, max;  // bounds on numbers / array elements
   bool min_exclusive = false, max_exclusive = false;
-  std::vector<std::string> choices;  // strings: one of these (empty = any string)
+  std::vector<std::string> choices;  // strings, string arrays' elements: one of these (empty = any)
+  bool distinct_non_empty = false;   // string arrays: at least one element, none repeated
   bool strictly_increasing = false;  // arrays
   bool name = false;                 // strings: non-empty, no '/', '\\', control characters,
                                      // at most kMaxNameBytes (a folder name)
@@ -86,6 +103,7 @@ Constraint closed_closed(double lo, double hi);  // [lo, hi]
 Constraint one_of(std::vector<std::string> choices);
 Constraint increasing(Constraint each = any_value());  // arrays: elements obey `each`, strictly up
 Constraint name_like();
+Constraint distinct_choices(std::vector<std::string> choices);  // string arrays
 
 struct KeySpec {
   std::string key;  // dotted, e.g. "physics.K"

@@ -4,6 +4,7 @@
 
 #include "app/json_numbers.hpp"
 #include "app/md_output.hpp"
+#include "app/summary.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 
@@ -174,14 +175,25 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
         {"hydro_kinetic", numbers(out.hydro_energy_kinetic)},
         {"md_kinetic", numbers(out.md_energy_kinetic)}}},
       {"density_modes", modes_summary(out)},
+      {"monitors_fired_at_parting", out.window.throughout || !out.window.left_at
+                                        ? json(nullptr)
+                                        : json(monitors_fired_by(run.validity, out.window))},
   };
 }
 
+json closure_comparison_summary(const CompareScene& scene, const HydroScene& hydro,
+                                const HydroOutcome& hydro_out, const MdScene& md,
+                                const MdOutcome& md_out, const CompareOutcome& out) {
+  json entry = compare_summary(scene, hydro, hydro_out, md, md_out, out);
+  entry["hydro"] = hydro_summary(hydro, hydro_out);
+  return entry;
+}
+
 void write_compare_results(const std::filesystem::path& file, const CompareScene& scene,
-                           const MdScene& md, const CompareOutcome& out) {
+                           const MdScene& md, const CompareOutcome& out, const std::string& root) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
-  H5::Group g = h5.createGroup("/compare");
+  H5::Group g = h5.createGroup(root);
   const auto& sc = md.spec.scene;
   write_attribute(g, "sigmas", scene.sigmas);
   write_attribute(g, "agreement_fraction", scene.agreement_fraction);
@@ -200,7 +212,7 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
   write_vector(g, "x", out.x);
   write_vector(g, "collision_clock", out.collision_clock);
 
-  H5::Group fields = h5.createGroup("/compare/fields");
+  H5::Group fields = h5.createGroup(root + "/fields");
   for (const auto& f : out.fields) {
     H5::Group fg = fields.createGroup(f.name);
     write_attribute(fg, "error_source", f.error_source);
@@ -210,23 +222,23 @@ void write_compare_results(const std::filesystem::path& file, const CompareScene
     write_rows(fg, "md_error", column_rows(out.md_on_bins, c.standard_error));
     for (const auto& [name, metric] : kMetrics) write_vector(fg, name, per_time(f.track, metric));
   }
-  H5::Group peak = h5.createGroup("/compare/peak");
+  H5::Group peak = h5.createGroup(root + "/peak");
   write_vector(peak, "hydro_n", out.hydro_n_peak);
   write_vector(peak, "md_n", out.md_n_peak);
   write_vector(peak, "md_n_error", out.md_n_peak_error);
   write_vector(peak, "hydro_dvdx", out.hydro_dvdx_peak);
   write_vector(peak, "md_dvdx", out.md_dvdx_peak);
   write_vector(peak, "inertia_n", out.inertia_n_peak);
-  H5::Group energy = h5.createGroup("/compare/energy");
+  H5::Group energy = h5.createGroup(root + "/energy");
   write_vector(energy, "hydro_thermal", out.hydro_energy_thermal);
   write_vector(energy, "md_thermal", out.md_energy_thermal);
   write_vector(energy, "hydro_kinetic", out.hydro_energy_kinetic);
   write_vector(energy, "md_kinetic", out.md_energy_kinetic);
-  H5::Group inertia = h5.createGroup("/compare/inertia");
+  H5::Group inertia = h5.createGroup(root + "/inertia");
   write_rows(inertia, "n", out.inertia_n);
   write_rows(inertia, "v", out.inertia_v);
   if (!out.theory_rate.empty()) {
-    H5::Group modes = h5.createGroup("/compare/modes");
+    H5::Group modes = h5.createGroup(root + "/modes");
     std::vector<double> k;
     for (std::size_t i = 1; i <= out.theory_rate.size(); ++i) k.push_back(double(i));
     write_vector(modes, "k", k);

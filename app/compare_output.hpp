@@ -3,6 +3,7 @@
 // results.h5 (read by scripts/report.py).
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/compare_scene.hpp"
 
@@ -12,8 +13,16 @@ nlohmann::json compare_summary(const CompareScene& scene, const HydroScene& hydr
                                const HydroOutcome& hydro_out, const MdScene& md,
                                const MdOutcome& md_out, const CompareOutcome& out);
 
-// Adds /compare to an existing results.h5.
+// One closure's entry of compare.closures (compare.closures = [...]): its compare block as above
+// and its own hydro block (hydro_summary, with its validity monitors).
+nlohmann::json closure_comparison_summary(const CompareScene& scene, const HydroScene& hydro,
+                                          const HydroOutcome& hydro_out, const MdScene& md,
+                                          const MdOutcome& md_out, const CompareOutcome& out);
+
+// Adds the group `root` (/compare, or /compare/closures/<name> of one closure) to an existing
+// results.h5.
 void write_compare_results(const std::filesystem::path& file, const CompareScene& scene,
-                           const MdScene& md, const CompareOutcome& out);
+                           const MdScene& md, const CompareOutcome& out,
+                           const std::string& root = "/compare");
 
 }  // namespace granvv::app

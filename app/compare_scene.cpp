@@ -129,6 +129,25 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
                       ": must be < md.bins / 2 = " + std::to_string(bins / 2) +
                       " (the Nyquist mode of the bins)");
   }
+  s.closures = c.strings("compare.closures");
+  const std::string listed = format_value(c.value("compare.closures"));
+  if (s.closures.front() != c.string("hydro.closure")) {
+    throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
+                      ": the first closure fills the hydro and compare blocks, so it must be "
+                      "hydro.closure = \"" + c.string("hydro.closure") + "\" (list it first)");
+  }
+  // Each closure models the particle scene: its phi0 is md.area_fraction (app/hydro_scene.cpp).
+  hydro::ClosureParameters params;
+  params.physics = {c.real("physics.K"), c.real("physics.q")};
+  params.extra = {{"area_fraction", c.real("md.area_fraction")}};
+  for (const auto& name : s.closures) {
+    if (const auto problem = hydro::closure_parameter_problem(name, params)) {
+      throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
+                        ": closure \"" + name + "\" cannot model the particles at " +
+                        "md.area_fraction = " + format_value(c.value("md.area_fraction")) + " (" +
+                        problem->reason + ")");
+    }
+  }
   if (c.string("md.kernel") != "bin") {
     throw ConfigError(c.origin("md.kernel") + ": md.kernel = \"" + c.string("md.kernel") +
                       "\": a comparison bins the hydro like the particles, so it needs "
@@ -176,6 +195,17 @@ hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& s,
   f.vy = compare::bin_interpolant(vy);
   f.T = compare::bin_interpolant(T);
   return f;
+}
+
+std::vector<std::string> monitors_fired_by(const hydro::ValidityRecord& validity,
+                                           const compare::AgreementWindow& window) {
+  std::vector<std::string> fired;
+  if (window.throughout || !window.left_at) return fired;
+  for (const auto& d : hydro::monitor_definitions()) {
+    const auto& crossing = validity.first_crossing[static_cast<int>(d.monitor)];
+    if (crossing && crossing->time <= *window.left_at) fired.push_back(d.name);
+  }
+  return fired;
 }
 
 CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydro,

@@ -22,9 +22,14 @@ struct CompareScene {
   double agreement_fraction = 0.0;
   compare::VerdictRule verdict_rule;  // its offset_sigmas is compare.sigmas
   int density_modes = 0;
+  // compare.closures: the hydro closures run against the one particle ensemble, each compared
+  // on its own; the first is hydro.closure and fills the hydro and compare blocks.
+  std::vector<std::string> closures;
 };
 
-// Reads [compare]; std::nullopt if compare.enabled is false.
+// Reads [compare]; std::nullopt if compare.enabled is false. Throws ConfigError, naming
+// compare.closures, for a closure list whose first entry is not hydro.closure or whose closures
+// cannot model the particle scene (e.g. enskog outside its area fractions).
 std::optional<CompareScene> compare_scene_from(const CaseConfig& config);
 
 // The hydro of a comparison models the particles' own scene: K and q from the particle scene
@@ -78,6 +83,11 @@ struct CompareOutcome {
   double offset_sigmas = 0.0;  // box-mean offset of the first field to part, in its std. errors
   std::string verdict;
 };
+
+// The monitors (hydro/validity_monitors.hpp, by summary name) that had crossed their
+// thresholds at or before the time the first field parted (empty when nothing parted).
+std::vector<std::string> monitors_fired_by(const hydro::ValidityRecord& validity,
+                                           const compare::AgreementWindow& window);
 
 CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydro,
                                const HydroOutcome& hydro_out, const MdScene& md,

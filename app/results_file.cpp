@@ -18,10 +18,11 @@ using h5::write_attribute;
 using h5::write_matrix;
 using h5::write_vector;
 
-// One dataset per column of hydro/time_series.hpp, in its order.
+// One dataset per column of hydro/time_series.hpp, in its order; a column the run did not
+// record (the area fraction without phi0) is left out.
 void write_time_series(H5::Group g, const hydro::TimeSeries& ts) {
   for (const auto& column : hydro::time_series_columns()) {
-    write_vector(g, column.name, ts.*column.values);
+    if (!(ts.*column.values).empty()) write_vector(g, column.name, ts.*column.values);
   }
 }
 
@@ -97,16 +98,22 @@ void create_results_file(const std::filesystem::path& file, const RunMetadata& m
 }
 
 void write_hydro_results(const std::filesystem::path& file, const HydroScene& scene,
-                         const HydroOutcome& out) {
+                         const HydroOutcome& out, const std::string& root) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
-  H5::Group hydro_group = h5.createGroup("/hydro");
-  write_time_series(h5.createGroup("/hydro/timeseries"), out.run.series);
-  H5::Group fields = h5.createGroup("/hydro/fields");
+  H5::Group hydro_group = h5.createGroup(root);
+  write_time_series(h5.createGroup(root + "/timeseries"), out.run.series);
+  H5::Group fields = h5.createGroup(root + "/fields");
   fields::write_field_series(fields, out.cell_fields);
-  write_lagrangian(h5.createGroup("/hydro/lagrangian"), out);
-  write_theory(h5.createGroup("/hydro/theory"), scene, out);
-  if (out.convergence) write_convergence(h5.createGroup("/hydro/convergence"), *out.convergence);
+  write_lagrangian(h5.createGroup(root + "/lagrangian"), out);
+  write_theory(h5.createGroup(root + "/theory"), scene, out);
+  if (out.convergence) write_convergence(h5.createGroup(root + "/convergence"), *out.convergence);
+}
+
+void create_group(const std::filesystem::path& file, const std::string& path) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
+  h5.createGroup(path);
 }
 
 }  // namespace granvv::app

@@ -18,7 +18,11 @@ struct RunMetadata {
 
 // Creates (or truncates) the file with the root attributes; every model's group is added to it.
 void create_results_file(const std::filesystem::path& file, const RunMetadata& meta);
+// The hydro's group at `root`: /hydro, or /hydro_closures/<name> for a further closure of a
+// comparison (compare.closures).
 void write_hydro_results(const std::filesystem::path& file, const HydroScene& scene,
-                         const HydroOutcome& outcome);
+                         const HydroOutcome& outcome, const std::string& root = "/hydro");
+// An empty group (a parent of per-closure groups).
+void create_group(const std::filesystem::path& file, const std::string& path);
 
 }  // namespace granvv::app

@@ -213,6 +213,44 @@ int finish_outputs(OutputFolder& folder, nlohmann::json& summary, spdlog::logger
   return exit_code;
 }
 
+// compare.closures with more than one closure: every further closure's hydro runs against the
+// same particle ensemble and is compared on its own. results.h5 gets /hydro_closures/<name> (its
+// hydro) and /compare/closures/<name> (its comparison, the first closure's too); the compare
+// block gets `closures` {<name>: its compare block with its own hydro block} and
+// `closure_order`. The first closure's hydro, /hydro and the compare block are as without the list.
+void compare_closures(const CompareScene& compare, const HydroScene& first,
+                      const HydroOutcome& first_outcome, const CompareOutcome& first_compared,
+                      const MdScene& md_scene, const MdOutcome& md, const Ranks& ranks,
+                      const fs::path& results, nlohmann::json& block, spdlog::logger& log) {
+  write_output(ranks, results, [&] {
+    create_group(results, "/compare/closures");
+    create_group(results, "/hydro_closures");
+  });
+  nlohmann::json entries = nlohmann::json::object();
+  for (const std::string& name : compare.closures) {
+    HydroScene scene = first;
+    scene.closure = name;
+    std::optional<HydroOutcome> run;
+    std::optional<CompareOutcome> own;
+    if (name != first.closure) {
+      log.info("hydro ({}): the same particles, closure \"{}\"", name, name);
+      run = run_continuum(scene, log);
+      own = compare_engines(compare, scene, *run, md_scene, md);
+      write_output(ranks, results,
+                   [&] { write_hydro_results(results, scene, *run, "/hydro_closures/" + name); });
+    }
+    const HydroOutcome& outcome = run ? *run : first_outcome;
+    const CompareOutcome& compared = own ? *own : first_compared;
+    write_output(ranks, results, [&] {
+      write_compare_results(results, compare, md_scene, compared, "/compare/closures/" + name);
+    });
+    entries[name] = closure_comparison_summary(compare, scene, outcome, md_scene, md, compared);
+    log.info("compare ({}): {}", name, compared.verdict);
+  }
+  block["closures"] = entries;
+  block["closure_order"] = compare.closures;
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -446,6 +484,10 @@ int run_command(const RunOptions& options) {
       });
       summary["compare"] =
           compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);
+      if (compare_scene->closures.size() > 1) {
+        compare_closures(*compare_scene, scene, *outcome, compared, *md_scene, *md, ranks,
+                         work / "results.h5", summary["compare"], *log);
+      }
       log->info("compare: {}", compared.verdict);
       log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
                 outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);

@@ -53,6 +53,24 @@ json convergence_json(const hydro::ConvergenceStudy& c) {
 
 }  // namespace
 
+json validity_json(const hydro::ValidityRecord& v) {
+  json out = json::object();
+  for (const auto& d : hydro::monitor_definitions()) {
+    const int k = static_cast<int>(d.monitor);
+    const auto& crossing = v.first_crossing[k];
+    out[d.name] = {
+        {"applies", bool(v.applies[k])},
+        {"threshold", v.threshold[k]},
+        {"crossed", crossing.has_value()},
+        {"value", crossing ? json(crossing->value) : json()},
+        {"time", crossing ? json(crossing->time) : json()},
+        {"place", crossing ? json(crossing->x) : json()},
+        {"largest", v.applies[k] ? number_or_null(v.largest[k]) : json()},
+    };
+  }
+  return out;
+}
+
 std::string summary_text(const json& summary) {
   // Strings that are not UTF-8 (a folder name, say) are written with U+FFFD, not thrown on.
   return summary.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
@@ -147,6 +165,7 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["energy_drift"] = run.energy_drift;
   h["momentum_drift"] = run.momentum_drift;
   h["mass_drift"] = run.mass_drift;
+  h["validity"] = validity_json(run.validity);
   h["haff_max_relative_error"] = out.haff_max_relative_error;
   if (out.linear_rate) {
     const auto& r = *out.linear_rate;

@@ -66,6 +66,16 @@ struct HcsLinearisation {
   double shear_cutoff_mode = 0.0;
 };
 
+// What the validity monitors of a run read from its closure (hydro/validity_monitors.hpp,
+// docs/physics.md §9): the collision rate and mean free path of the gas the closure describes,
+// and the local area fraction up to which it describes it.
+struct ValidityScales {
+  double K = 0.0;
+  double area_fraction = 0.0;  // phi0 (0: not known, the area-fraction monitor does not apply)
+  bool contact_value = false;  // collisions enhanced by chi(phi0 n) (a dense-gas closure)
+  double area_fraction_limit = 0.0;  // the area-fraction monitor's threshold
+};
+
 class Closure {
  public:
   virtual ~Closure() = default;
@@ -85,6 +95,7 @@ class Closure {
                     std::vector<double>& cooled) const = 0;
 
   virtual HcsLinearisation hcs_linearisation() const = 0;
+  virtual ValidityScales validity_scales() const = 0;
 
   // Why the closure no longer describes cells of densities n (empty while it does): the driver
   // stops a run there (hydro/driver.hpp, RunStatus::closure_limit). The dilute gas has no limit.

@@ -4,8 +4,9 @@
 
 namespace granvv::hydro {
 
-DiluteClosure::DiluteClosure(const Physics& physics, CoolingRate cooling)
+DiluteClosure::DiluteClosure(const Physics& physics, CoolingRate cooling, double area_fraction)
     : physics_(physics),
+      area_fraction_(area_fraction),
       loss_factor_(inelastic_loss_factor(cooling, physics.q)),
       cooling_coefficient_(8.0 * physics.q / physics.K * loss_factor_) {}
 
@@ -66,6 +67,10 @@ HcsLinearisation DiluteClosure::hcs_linearisation() const {
   h.clustering_cutoff_mode = std::sqrt(q_eff) / (kPi * physics_.K);
   h.shear_cutoff_mode = 2.0 * std::sqrt(q_eff) / (kPi * physics_.K);
   return h;
+}
+
+ValidityScales DiluteClosure::validity_scales() const {
+  return {physics_.K, area_fraction_, false, kDiluteAreaFractionLimit};
 }
 
 }  // namespace granvv::hydro

@@ -13,9 +13,17 @@
 
 namespace granvv::hydro {
 
+// The local area fraction up to which the dilute closure is taken to hold (its validity
+// monitor's threshold, docs/physics.md §9): at phi = 0.1 Henderson's chi is 1.18, so the
+// dilute gas misses 18 % of the collisions and, at r = 0.9, 22 % of the pressure.
+inline constexpr double kDiluteAreaFractionLimit = 0.1;
+
 class DiluteClosure final : public Closure {
  public:
-  explicit DiluteClosure(const Physics& physics, CoolingRate cooling = CoolingRate::small_q);
+  // area_fraction: phi0 of the gas when it is known (0: not), read only by the validity
+  // monitors; the dilute equations do not depend on it.
+  explicit DiluteClosure(const Physics& physics, CoolingRate cooling = CoolingRate::small_q,
+                         double area_fraction = 0.0);
 
   // The formulas, one per quantity, for one cell.
   static double pressure(double n, double T) { return n * T; }
@@ -41,6 +49,7 @@ class DiluteClosure final : public Closure {
   void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
             std::vector<double>& cooled) const override;
   HcsLinearisation hcs_linearisation() const override;
+  ValidityScales validity_scales() const override;
 
  private:
   // eta and kappa from T^{1/2}, which they share.
@@ -48,7 +57,8 @@ class DiluteClosure final : public Closure {
   double conductivity_of_root(double sqrt_T) const { return physics_.K * sqrt_T; }
 
   Physics physics_;
-  double loss_factor_;  // g
+  double area_fraction_;  // phi0, 0 = not known
+  double loss_factor_;    // g
   double cooling_coefficient_;
 };
 

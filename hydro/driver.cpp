@@ -55,9 +55,15 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
   CellGeometry cells;  // widths and densities of s, updated by every accepted step
   measure_cells(s, cells);
   const Diagnostics d0 = diagnose(s, cells);
+  // The validity monitors, measured on every accepted state (hydro/validity_monitors.hpp).
+  const ValidityScales scales = closure.validity_scales();
+  result.validity = ValidityRecord(scales);
+  ValidityMeasures validity = measure_validity(s, cells, scales);
+  result.validity.note(validity, s.t);
   double cooled = 0.0;
   auto record = [&](double step, const Diagnostics& now) {
-    result.series.record({s.t, step, now, cooled, haff_temperature(s.t, t0)});
+    result.series.record(
+        {s.t, step, now, cooled, haff_temperature(s.t, t0), validity, scales.area_fraction > 0.0});
   };
   record(0.0, d0);
   result.snapshots.push_back({"initial", s});
@@ -137,6 +143,8 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
 
     const Diagnostics prev = d;
     d = diagnose(s, cells);
+    validity = measure_validity(s, cells, scales);
+    result.validity.note(validity, s.t);
     drift(d);
     for (double level : control.crossing_densities) {
       if (prev.n_max < level && d.n_max >= level && !result.crossing_times.count(level)) {

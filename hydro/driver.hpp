@@ -13,6 +13,7 @@
 #include "hydro/lagrangian_state.hpp"
 #include "hydro/time_series.hpp"
 #include "hydro/time_step.hpp"
+#include "hydro/validity_monitors.hpp"
 
 namespace granvv::hydro {
 
@@ -50,6 +51,8 @@ struct RunResult {
   double energy_drift = 0.0;    // max |E + E_cooled - E(0)| / E(0)
   double momentum_drift = 0.0;  // max |P - P(0)| (P(0) is zero in the paper's scenes)
   double mass_drift = 0.0;
+  // The validity monitors' first crossings and largest values (hydro/validity_monitors.hpp).
+  ValidityRecord validity;
 };
 
 struct Progress {

@@ -125,6 +125,10 @@ HcsLinearisation EnskogClosure::hcs_linearisation() const {
   return h;
 }
 
+ValidityScales EnskogClosure::validity_scales() const {
+  return {physics_.K, area_fraction_, true, enskog::kFreezingAreaFraction};
+}
+
 std::string EnskogClosure::validity_problem(const std::vector<double>& n) const {
   size_t densest = 0;
   for (size_t i = 1; i < n.size(); ++i) {

@@ -36,6 +36,7 @@ class EnskogClosure final : public Closure {
   void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
             std::vector<double>& cooled) const override;
   HcsLinearisation hcs_linearisation() const override;
+  ValidityScales validity_scales() const override;
   std::string validity_problem(const std::vector<double>& n) const override;
 
  private:

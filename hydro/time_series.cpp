@@ -1,9 +1,25 @@
 #include "hydro/time_series.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace granvv::hydro {
 
 // Every member of TimeSeries is a column of the table.
 static_assert(sizeof(TimeSeries) == kTimeSeriesColumns * sizeof(std::vector<double>));
+
+namespace {
+
+double monitor(const TimeSeriesSample& s, Monitor m) {
+  return s.validity[static_cast<int>(m)].value;
+}
+TimeSeriesColumn monitor_column(Monitor m, std::vector<double> TimeSeries::*values,
+                                double (*value)(const TimeSeriesSample&)) {
+  const MonitorDefinition& d = monitor_definitions()[static_cast<int>(m)];
+  return {d.column, d.meaning, values, value};
+}
+
+}  // namespace
 
 const std::array<TimeSeriesColumn, kTimeSeriesColumns>& time_series_columns() {
   using S = TimeSeriesSample;
@@ -34,13 +50,29 @@ const std::array<TimeSeriesColumn, kTimeSeriesColumns>& time_series_columns() {
        [](const S& s) { return s.diagnostics.momentum; }},
       {"haff_T", "Haff's law T_H(t) of the closure", &TimeSeries::haff_T,
        [](const S& s) { return s.haff_T; }},
+      // The validity monitors (hydro/validity_monitors.hpp), named there.
+      monitor_column(Monitor::area_fraction, &TimeSeries::phi_max,
+                     [](const S& s) {
+                       return s.area_fraction_known ? monitor(s, Monitor::area_fraction)
+                                                    : std::numeric_limits<double>::quiet_NaN();
+                     }),
+      monitor_column(Monitor::knudsen_density, &TimeSeries::knudsen_n_max,
+                     [](const S& s) { return monitor(s, Monitor::knudsen_density); }),
+      monitor_column(Monitor::knudsen_velocity, &TimeSeries::knudsen_v_max,
+                     [](const S& s) { return monitor(s, Monitor::knudsen_velocity); }),
+      monitor_column(Monitor::knudsen_temperature, &TimeSeries::knudsen_T_max,
+                     [](const S& s) { return monitor(s, Monitor::knudsen_temperature); }),
+      monitor_column(Monitor::collision_flow, &TimeSeries::collision_flow_max,
+                     [](const S& s) { return monitor(s, Monitor::collision_flow); }),
   }};
   return columns;
 }
 
 void TimeSeries::record(const TimeSeriesSample& sample) {
-  for (const auto& column : time_series_columns())
-    (this->*column.values).push_back(column.value(sample));
+  for (const auto& column : time_series_columns()) {
+    const double value = column.value(sample);
+    if (!std::isnan(value)) (this->*column.values).push_back(value);
+  }
 }
 
 }  // namespace granvv::hydro

@@ -217,10 +217,25 @@ TEST(ClosureRegistry, NamesTheDiluteClosureAndRejectsUnknownNames) {
 
 TEST(TimeSeriesColumns, RecordFillsEveryColumnInTheResultsFileOrder) {
   // The order of /hydro/timeseries in results.h5 (docs/outputs.md).
-  const std::vector<std::string> expected{
-      "t",        "dt",     "n_max",          "x_peak",         "dvdx_peak",        "T_min",
-      "T_mean",   "energy", "energy_thermal", "energy_kinetic", "energy_kinetic_y", "energy_cooled",
-      "momentum", "haff_T"};
+  const std::vector<std::string> expected{"t",
+                                          "dt",
+                                          "n_max",
+                                          "x_peak",
+                                          "dvdx_peak",
+                                          "T_min",
+                                          "T_mean",
+                                          "energy",
+                                          "energy_thermal",
+                                          "energy_kinetic",
+                                          "energy_kinetic_y",
+                                          "energy_cooled",
+                                          "momentum",
+                                          "haff_T",
+                                          "phi_max",
+                                          "knudsen_n_max",
+                                          "knudsen_v_max",
+                                          "knudsen_T_max",
+                                          "collision_flow_max"};
   std::vector<std::string> names;
   for (const auto& column : time_series_columns()) names.push_back(column.name);
   EXPECT_EQ(names, expected);
@@ -233,6 +248,7 @@ TEST(TimeSeriesColumns, RecordFillsEveryColumnInTheResultsFileOrder) {
   sample.diagnostics.energy_kinetic = 0.125;
   sample.energy_cooled = 0.75;
   sample.haff_T = 0.01;
+  sample.area_fraction_known = true;
   TimeSeries series;
   series.record(sample);
   series.record(sample);

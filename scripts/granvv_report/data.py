@@ -62,20 +62,24 @@ def _read_group(f, path):
     return {"data": data, "attrs": {k: _decode(v) for k, v in g.attrs.items()}}
 
 
-def _read_compare(f):
+def _read_compare(f, root="compare"):
     """The /compare group of a side-by-side run: attrs, t, x, collision_clock, and its subgroups
-    (fields/<name>, peak, energy, inertia, modes), or None when the run compared nothing."""
-    top = _read_group(f, "compare")
+    (fields/<name>, peak, energy, inertia, modes), or None when the run compared nothing. With
+    compare.closures, closures[<name>] holds the same for each closure (/compare/closures/<name>)."""
+    top = _read_group(f, root)
     if top is None:
         return None
-    out = {"attrs": top["attrs"], "data": top["data"], "fields": {}}
-    if "compare/fields" in f and isinstance(f["compare/fields"], h5py.Group):
-        for name in f["compare/fields"]:
-            g = _read_group(f, f"compare/fields/{name}")
+    out = {"attrs": top["attrs"], "data": top["data"], "fields": {}, "closures": {}}
+    if f"{root}/fields" in f and isinstance(f[f"{root}/fields"], h5py.Group):
+        for name in f[f"{root}/fields"]:
+            g = _read_group(f, f"{root}/fields/{name}")
             if g is not None:
                 out["fields"][name] = g
     for sub in ("peak", "energy", "inertia", "modes"):
-        out[sub] = _read_group(f, f"compare/{sub}")
+        out[sub] = _read_group(f, f"{root}/{sub}")
+    if root == "compare" and "compare/closures" in f and isinstance(f["compare/closures"], h5py.Group):
+        for name in f["compare/closures"]:
+            out["closures"][name] = _read_compare(f, f"compare/closures/{name}")
     return out
 
 

@@ -6,12 +6,13 @@ import warnings
 
 import matplotlib.pyplot as plt
 import numpy as np
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from .data import (Skip, arr, cmp_box, cmp_data, cmp_rows, cmp_vec, cmp_window, md_members,
                    md_value, nanmean_rows, num)
 from .formatting import CMP_FIELD_HTML, fmt, tex_num, verdict
 from .registry import Drawn, figure
+from .validity import mark_validity
 from .style import (CMP_FIELD_TEX, CMP_FIELDS, CMP_HYDRO, CMP_INERTIA, CMP_MAX_TIMES, CMP_MD, T_UNIT,
                     X_UNIT, band, md_time_axis, pick, positive)
 
@@ -215,6 +216,7 @@ def fig_cmp_time(run):
         a.set_xlabel(T_UNIT)
         a.legend(loc="best", fontsize=7.8)
         md_time_axis(a, L)
+        mark_validity(a, run.hydro_summary("validity"))
     # (c) energies per particle: the full time series of both engines, and the binned values
     ts = run.hydro_ts
     th = arr(ts, "t", 2)
@@ -369,6 +371,7 @@ def fig_cmp_metrics(run):
         mark_window(a, C, t, label=a is ax_f)
         a.set_xlabel(T_UNIT)
         md_time_axis(a, L)
+        mark_validity(a, run.hydro_summary("validity"))
     ax_f.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), fontsize=7.8, ncol=2)
     ax_z.legend(loc="best", fontsize=7.8)
     ax_n.legend(loc="best", fontsize=7.2, ncol=2)
@@ -503,3 +506,73 @@ def fig_cmp_modes(run):
                  note=Markup("Each curve is divided by its own t = 0 value. The fitted exponents are least-squares slopes of "
                              "ln|n<sub>k</sub>| against s over all compared times, nonlinear growth included — a guide, not "
                              "a measurement of λ<sub>k</sub>."))
+
+
+@figure(file="cmp5_closures.png", section="compare", anchor="cmp_closures",
+        title="One particle ensemble, several hydro closures (compare.closures)",
+        caption=("Each hydro closure (docs/physics.md §9) run against the same particles and compared on "
+                 "its own: the density on the bins at the last time each closure was compared, and the "
+                 "peak density over time, against the particles' ensemble mean (± standard error). The "
+                 "rows below give each closure's agreement window, first field to part, verdict and the "
+                 "validity monitors that had fired by then."))
+def fig_cmp_closures(run):
+    """Density profiles and peak density of each closure's hydro over the same particles."""
+    C = run.compare
+    closures = (C or {}).get("closures") or {}
+    order = run.compare_summary("closure_order") or list(closures)
+    order = [name for name in order if closures.get(name)]
+    if len(order) < 2:
+        raise Skip("a single hydro closure (compare.closures lists one)")
+    L = cmp_box(run)
+    fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
+    styles = ["-", "--", ":", "-."]
+    measured = []
+    md_drawn = False
+    for k, name in enumerate(order):
+        G = closures[name]
+        t, x = arr(G, "t", 1), arr(G, "x", 2)
+        g = G["fields"].get("n")
+        if t is None or x is None or g is None:
+            continue
+        h = cmp_rows(g, "hydro", (t.size, x.size))
+        m, e = cmp_rows(g, "md", (t.size, x.size)), cmp_rows(g, "md_error", (t.size, x.size))
+        if h is None or m is None:
+            continue
+        i = t.size - 1
+        if not md_drawn:
+            ax_a.errorbar(x, m[i], yerr=e[i] if e is not None else None, fmt="o", ms=2.6, color=CMP_MD,
+                          elinewidth=0.8, capsize=0, label=rf"MD mean, $t = {t[i]:.4g}$")
+            pk = G.get("peak") or {}
+            mn, mne = arr(pk, "md_n"), arr(pk, "md_n_error")
+            if mn is not None and mn.size == t.size:
+                ax_b.errorbar(t, mn, yerr=mne if mne is not None and mne.size == t.size else None, fmt="s",
+                              ms=4, color=CMP_MD, capsize=2.5, lw=1.0, label="MD (± standard error)")
+            md_drawn = True
+        ax_a.plot(x, h[i], color=f"C{k}", lw=1.5, ls=styles[k % 4], label=rf"hydro {name}, $t = {t[i]:.4g}$")
+        hn = arr(G.get("peak") or {}, "hydro_n")
+        if hn is not None and hn.size == t.size:
+            ax_b.plot(t, hn, color=f"C{k}", lw=1.4, ls=styles[k % 4], marker="o", ms=3.5, label=f"hydro {name}")
+        c = run.compare_summary("closures", name) or {}
+        w, left, first = num(c.get("agreement_window")), num(c.get("left_at")), c.get("first_field_to_leave")
+        fired = c.get("monitors_fired_at_parting")
+        md_t = (lambda v: f" (t<sub>MD</sub> = {fmt(v * L)})" if L and v is not None else "")
+        value = Markup(
+            f"window to t = {fmt(w)}{md_t(w)}; "
+            + (f"first to part: {escape(first)} at t = {fmt(left)}{md_t(left)}; " if first else "every field agrees; ")
+            + f"verdict: {escape(c.get('disagreement') or '—')}; "
+            + ("monitors fired by then: " + (escape(", ".join(fired)) if fired else "none") if fired is not None else ""))
+        measured.append((Markup(f"closure <b>{escape(name)}</b>"), value, None))
+        if w is not None:
+            ax_b.axvline(w, color=f"C{k}", lw=0.8, ls=styles[k % 4], alpha=0.6)
+    if not md_drawn:
+        raise Skip("/compare/closures holds no density rows")
+    ax_a.set_xlabel(r"$x$  [$L_x$]")
+    ax_a.set_ylabel(r"$n$  [$n_0$] (on the bins)")
+    ax_a.set_title("(a) density at the last compared time")
+    ax_a.legend(loc="best", fontsize=7.8)
+    ax_b.set_xlabel(T_UNIT)
+    ax_b.set_ylabel(r"peak density $n_{\max}$  [$n_0$] (on the bins)")
+    ax_b.set_title("(b) peak density (lines: agreement windows)")
+    ax_b.legend(loc="best", fontsize=7.8)
+    md_time_axis(ax_b, L)
+    return Drawn(fig, measured)

@@ -10,6 +10,7 @@ from markupsafe import Markup, escape
 from .data import Skip, arr, find_snapshot_summary, get, num, snapshot_labels
 from .formatting import fmt, pct, tex_num, verdict, within_tolerance
 from .registry import Drawn, figure
+from .validity import MONITOR_COLUMNS, MONITOR_LABELS, mark_validity
 from .style import (N_UNIT, T_FIELD, T_UNIT, V_UNIT, X_UNIT, marker_every, pick, power_scale,
                     sorted_periodic, thin, time_colors, tlabel, wrap)
 
@@ -179,6 +180,7 @@ def fig_energy(run):
             ax.axvline(t0, color="0.6", lw=0.7, ls=":")
             ax.text(t0, 0.5, r" $t_0$", transform=ax.get_xaxis_transform(), color="0.4", fontsize=8)
     ax.set_xlim(lo, tt.max() * 1.15)
+    mark_validity(ax, run.hydro_summary("validity"))
     ax.set_xlabel(T_UNIT)
     ax.set_ylabel(r"energy  [$N T_0$]")
     ax.set_title("(a) energy split")
@@ -199,6 +201,7 @@ def fig_energy(run):
         ax2.set_ylabel("relative drift" + suffix)
         ax2.set_title("(b) conservation: energy balance and momentum")
         ax2.legend(loc="best")
+        mark_validity(ax2, run.hydro_summary("validity"))
     measured = [
         ("energy balance drift |E + E<sub>cooled</sub> − E(0)| / E(0)", fmt(run.hydro_summary("energy_drift")), None),
         ("momentum drift", fmt(run.hydro_summary("momentum_drift")), None),
@@ -384,6 +387,8 @@ def fig_singularity(run):
     ax2.set_ylabel(r"$1/n_{\max}$ [$1/n_0$],  $1/|\partial v/\partial x|$ [$L_x/\sqrt{T_0/m}$]")
     ax2.set_title("(b) inverses (paper's inset)")
     ax2.legend(loc="upper right")
+    for a in (ax, ax2):
+        mark_validity(a, run.hydro_summary("validity"))
     # Panel (c) counts time from the blow-up (extrapolated from the last samples of 1/n_max), the
     # time n_max really diverges; pressure in the peak bends 1/n_max, so the window fit comes earlier.
     tau_c = num(run.hydro_summary("blowup_time")) or tau
@@ -565,6 +570,9 @@ def fig_haff(run):
     ax2.set_xlabel(xlabel)
     ax2.set_ylabel(r"$\langle T\rangle/T_{\rm Haff} - 1$" + suffix)
     ax2.set_title("(b) relative deviation from Haff's law")
+    for a in (ax, ax2):
+        mark_validity(a, run.hydro_summary("validity"),
+                      (lambda v: 1 + v / t0) if t0 and t0 > 0 else (lambda v: v))
     measured = [
         ("max |⟨T⟩/T<sub>Haff</sub> − 1| (summary)", fmt(run.hydro_summary("haff_max_relative_error")), None),
         ("t<sub>0</sub> written by the code", fmt(t0), None),
@@ -704,4 +712,46 @@ def fig_convergence(run):
     ax.minorticks_off()
     measured = [(f"observed order, {words[k]}", fmt(o, 3), None) for k, _, o in drawn]
     measured.append(("cells", Markup(", ".join(str(int(c)) for c in cells)), None))
+    return Drawn(fig, measured)
+
+
+@figure(file="fig8_validity.png", section="hydro", anchor="validity",
+        title="Validity monitors: where the hydro's own assumptions stop holding",
+        caption=("The largest local area fraction φ<sub>0</sub>n, the Knudsen numbers of density, "
+                 "velocity and temperature (mean free path over gradient length) and the collision time "
+                 "over the flow time |∂v/∂x|<sup>−1</sup>, each against its threshold (dashed, same colour; "
+                 "docs/physics.md §9). The dotted vertical lines, drawn on every time plot of the hydro, "
+                 "mark the first crossing of each."))
+def fig_validity(run):
+    """The validity monitors' time series (/hydro/timeseries) against their thresholds."""
+    ts = run.hydro_ts
+    t = arr(ts, "t", 2)
+    validity = run.hydro_summary("validity") or {}
+    if t is None or not validity:
+        raise Skip("no validity monitors in this run (results.h5 and summary.json before they existed)")
+    fig, ax = plt.subplots(figsize=(7.4, 4.3), layout="constrained")
+    measured = []
+    for k, (key, column) in enumerate(MONITOR_COLUMNS.items()):
+        m = validity.get(key) or {}
+        y = arr(ts, column)
+        label = MONITOR_LABELS[key]
+        if y is not None and y.size == t.size:
+            tk, yk = thin(t, np.where(y > 0, y, np.nan))
+            ax.plot(tk, yk, color=f"C{k}", lw=1.2, label=label)
+            th = num(m.get("threshold"))
+            if th:
+                ax.axhline(th, color=f"C{k}", lw=0.7, ls="--")
+        if m.get("crossed"):
+            value = Markup(f"t = {fmt(num(m.get('time')))} at x = {fmt(num(m.get('place')), 3)} "
+                           f"(value {fmt(num(m.get('value')), 3)}, threshold {fmt(num(m.get('threshold')))})")
+        elif m.get("applies") is False:
+            value = Markup("not applicable (no φ<sub>0</sub>: physics.area_fraction not given)")
+        else:
+            value = Markup(f"never (largest {fmt(num(m.get('largest')), 3)}, threshold {fmt(num(m.get('threshold')))})")
+        measured.append((Markup(f"first crossing of {escape(key)}"), value, None))
+    ax.set_yscale("log")
+    ax.set_xlabel(T_UNIT)
+    ax.set_ylabel("largest local value")
+    mark_validity(ax, validity)
+    ax.legend(loc="best", fontsize=8)
     return Drawn(fig, measured)

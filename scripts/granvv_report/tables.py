@@ -14,6 +14,16 @@ def status_badge(status):
     return Markup(f'<span class="status {escape(str(status))}">{fmt(status)}</span>') if status else fmt(None)
 
 
+def fired_at_parting(fired, validity):
+    """The monitors that had crossed their thresholds by the parting, with their crossing times."""
+    if fired is None:
+        return fmt(None) if validity is None else Markup("no field parted")
+    if not fired:
+        return Markup("none")
+    return Markup(", ".join(f"{escape(name)} (t = {fmt(num(((validity or {}).get(name) or {}).get('time')))})"
+                            for name in fired))
+
+
 def compare_section(run):
     """The verdict box and the tables of the side-by-side section, or None without /compare."""
     C = run.compare
@@ -63,6 +73,8 @@ def compare_section(run):
         ("hydro started from", fmt({"md": "the MD's coarse-grained t = 0 fields", "case": "the case's initial fields"}
                                    .get(pick_value("hydro_initial"), pick_value("hydro_initial")))),
         ("compared times", Markup(f"{t.size}, from t = {fmt(t[0])} to {fmt(t[-1])}") if t is not None else fmt(None)),
+        ("the hydro's validity monitors (docs/physics.md §9) that had fired when the first field parted",
+         fired_at_parting(c.get("monitors_fired_at_parting"), run.hydro_summary("validity"))),
     ]
     # metrics per field and time
     metrics = []
