@@ -64,7 +64,7 @@ def _read_group(f, path):
 
 def _read_compare(f):
     """The /compare group of a side-by-side run: attrs, t, x, collision_clock, and its subgroups
-    (fields/<name>, peak, energy, inertia, modes), or None when the run compared nothing."""
+    (fields/<name>, peak, energy, inertia, modes, pressure), or None when the run compared nothing."""
     top = _read_group(f, "compare")
     if top is None:
         return None
@@ -74,7 +74,7 @@ def _read_compare(f):
             g = _read_group(f, f"compare/fields/{name}")
             if g is not None:
                 out["fields"][name] = g
-    for sub in ("peak", "energy", "inertia", "modes"):
+    for sub in ("peak", "energy", "inertia", "modes", "pressure"):
         out[sub] = _read_group(f, f"compare/{sub}")
     return out
 
@@ -245,6 +245,15 @@ def cmp_rows(g, name, shape):
 def cmp_vec(g, name, size):
     a = arr(g, name, 1)
     return a if a is not None and a.ndim == 1 and a.size == size and np.isfinite(a).any() else None
+
+
+def cmp_pressure(run):
+    """/compare/pressure (the particles' pressure against the hydro closure's p(n, T), MD units), or Skip."""
+    C = run.compare
+    P = C.get("pressure") if C else None
+    if P is None:
+        raise Skip("no /compare/pressure (no comparison, or an engine without a contact virial)")
+    return P
 
 
 def cmp_window(C):
