@@ -1,5 +1,6 @@
 #include "compare/sample_average.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -36,9 +37,12 @@ SampleAverage sample_average(const std::vector<std::vector<double>>& values,
     a.error = propagated.front();
     return a;
   }
-  double squares = 0.0;
+  double squares = 0.0, propagated_squares = 0.0;
   for (double m : means) squares += (m - a.mean) * (m - a.mean);
-  a.error = std::sqrt(squares / double(means.size() - 1) / double(means.size()));
+  for (double e : propagated) propagated_squares += e * e;
+  const double scatter = std::sqrt(squares / double(means.size() - 1) / double(means.size()));
+  const double model = std::sqrt(propagated_squares) / double(means.size());
+  a.error = std::isfinite(model) ? std::max(scatter, model) : scatter;
   return a;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // The time average of a sampled quantity over a run, and over an ensemble of runs, with its
-// standard error: with two or more members the scatter of the members' averages / sqrt(M)
-// (independent seeds); with one, the single-sample errors propagated as for independent
-// samples, sqrt(sum sigma_s^2) / S.
+// standard error. Each member's average has the propagated single-sample error
+// sqrt(sum sigma_s^2) / S (independent samples); the ensemble's error is the larger of the
+// scatter of the members' averages / sqrt(M) and those errors propagated to the mean: with
+// the two to four seeds of the shipped scenes the scatter alone has one to three degrees of
+// freedom, and the contact virial, a few contacts per sample, is far from Gaussian.
 #include <vector>
 
 namespace granvv::compare {

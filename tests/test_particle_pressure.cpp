@@ -129,6 +129,7 @@ TEST(ParticlePressure, ElasticGasFollowsHendersonsEquationOfState) {
   const double z = sum / k;
   const double error = std::sqrt((squares / k - z * z) / (k - 1));
   const double henderson = hydro::enskog::pressure_factor(phi, 1.0);
+  RecordProperty("compressibility", std::to_string(z) + " +- " + std::to_string(error));
   EXPECT_NEAR(z, henderson, 4.0 * error + 0.01) << "error " << error;
   EXPECT_LT(error, 0.03);
   // Isotropy: P_xx = P_yy within the same noise.
@@ -197,9 +198,13 @@ TEST(SampleAverage, MembersScatterOrPropagatedErrors) {
   auto a = compare::sample_average({{nan, 1.0, 3.0}}, {{nan, 0.4, 0.3}});
   EXPECT_EQ(a.mean, 2.0);
   EXPECT_NEAR(a.error, 0.25, 1e-15);  // sqrt(0.16 + 0.09) / 2
-  a = compare::sample_average({{1.0, 1.0}, {3.0, 3.0}}, {{9, 9}, {9, 9}});
+  a = compare::sample_average({{1.0, 1.0}, {3.0, 3.0}}, {{0.1, 0.1}, {0.1, 0.1}});
   EXPECT_EQ(a.mean, 2.0);
-  EXPECT_NEAR(a.error, 1.0, 1e-15);  // sqrt(2 / 1 / 2)
+  EXPECT_NEAR(a.error, 1.0, 1e-15);  // the scatter sqrt(2 / 1 / 2) beats the model 0.05
+  a = compare::sample_average({{1.0, 1.0}, {1.2, 1.2}}, {{2.0, 2.0}, {2.0, 2.0}});
+  // each member sqrt(4 + 4) / 2, their mean sqrt(2 + 2) / 2 = 1 beats the scatter 0.1
+  EXPECT_NEAR(a.error, 1.0, 1e-15);
+
 }
 
 // md_cooling_sweep (1000 disks, 4 seeds) shortened to 0.3 Haff times at the ends of the
