@@ -204,18 +204,19 @@ TEST(SampleAverage, MembersScatterOrPropagatedErrors) {
   a = compare::sample_average({{1.0, 1.0}, {1.2, 1.2}}, {{2.0, 2.0}, {2.0, 2.0}});
   // each member sqrt(4 + 4) / 2, their mean sqrt(2 + 2) / 2 = 1 beats the scatter 0.1
   EXPECT_NEAR(a.error, 1.0, 1e-15);
-
 }
 
-// md_cooling_sweep (1000 disks, 4 seeds) shortened to 0.3 Haff times at the ends of the
-// restitution range (r = 1 cannot run in Haff times; md_haff's r = 1 below): window, onsets and
-// pressure in the summary, the window never past the measured onset.
+// md_cooling_sweep (1000 disks, 2 seeds) shortened to 5 sigma sqrt(m/T0) (0.07 Haff times at
+// r = 0.02) at the ends of the restitution range it accepts (r = 1, which
+// cannot run in Haff times, below): window, onsets and pressure in the summary, the window
+// never past the measured onset.
 TEST(HaffWindowCli, StatesWindowOnsetsAndPressureAtTheEndsOfTheRestitutionRange) {
   for (const char* r : {"0.02", "0.999"}) {
     const auto dir = granvv::testing::fresh_directory(std::string("haff_window_") + r);
     const auto run = granvv::testing::run_cli(
-        "run md_cooling_sweep --quiet --set md.t_end=0.3 --set md.restitution=" + std::string(r) +
-        " --out " + dir.string());
+        "run md_cooling_sweep --quiet --set md.time_unit=md --set md.t_end=5 --set md.ensemble=2 "
+        "--set md.sample_interval=0.5 --set md.restitution=" +
+        std::string(r) + " --out " + dir.string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const auto md = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"))["md"];
     EXPECT_EQ(md["haff_mode_energy_fraction"], 0.01);
