@@ -199,6 +199,9 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.time_unit", kString, "md", one_of({"md", "haff"}),
        "unit of md.t_end, md.sample_interval and md.output_times: MD time (sigma sqrt(m/T0)) "
        "or the kinetic-theory Haff time t0 with chi(phi) (same cooling depth for every r)"},
+      {"md.haff_mode_energy_fraction", kReal, 0.01, open_open(0, 1),
+       "the Haff fit ends where the box's lowest Fourier modes of the momentum carry more than "
+       "this fraction of the kinetic energy (docs/physics.md §12), in a gas that starts below it"},
 
       // [compare]: hydro and coarse-grained particles side by side (needs md.enabled). The
       // compared times are md.output_times; the hydro runs to md.t_end (both in scaled units).

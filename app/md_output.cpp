@@ -7,6 +7,7 @@
 #include "app/json_numbers.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
+#include "hydro/enskog_factors.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::app {
@@ -83,6 +84,15 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
        std::isfinite(deviation) ? json(std::abs(deviation) <= kHaffT0Tolerance) : json()},
       {"haff_t0_paper", t0_paper},
       {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
+      {"haff_mode_energy_fraction", scene.haff_mode_energy_fraction},
+      {"haff_starts_homogeneous", out.homogeneous.starts_homogeneous},
+      {"haff_onset_measured", number_or_null(out.homogeneous.onset)},
+      {"haff_onset_linear", number_or_null(out.linear_mode_onset)},
+      {"pressure", number_or_null(out.pressure.mean)},
+      {"pressure_error", number_or_null(out.pressure.error)},
+      {"compressibility", number_or_null(out.compressibility.mean)},
+      {"compressibility_error", number_or_null(out.compressibility.error)},
+      {"compressibility_enskog", hydro::enskog::pressure_factor(sc.area_fraction, sc.restitution)},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},
@@ -123,6 +133,7 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
   write_vector(ts, "t", base.t);
   write_vector(ts, "T_mean", out.T.mean);
   write_vector(ts, "T_stderr", out.T.standard_error);
+  write_vector(ts, "mode_energy_fraction_mean", out.mode_energy_fraction.mean);
   const hsize_t members = out.runs.size();
   auto stack = [&](std::vector<double> md::MdSeries::*member) {
     std::vector<double> all;

@@ -11,6 +11,7 @@
 
 #include "app/work_estimate.hpp"
 #include "compare/ensemble_fields.hpp"
+#include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
 
@@ -139,6 +140,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   s.ensemble = c.int_value("md.ensemble");
   s.engine = c.string("md.engine");
   s.checkpoint_interval = c.real("md.checkpoint_interval");
+  s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
   for (const KeySpec& key : case_schema()) {
     if (key.section() != "md") continue;
     if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
@@ -242,7 +244,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
     }
     last_save = clock::now();
   };
-  std::vector<std::vector<double>> ts, Ts;
+  std::vector<std::vector<double>> ts, Ts, fractions, pressures, pressure_errors, zs, z_errors;
   for (int m = 0; m < scene.ensemble; ++m) {
     const MemberCheckpoint* earlier =
         m < static_cast<int>(resume.size()) ? &resume[std::size_t(m)] : nullptr;
@@ -289,11 +291,30 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
         if (rank == 0) save(m, {true, done, 0.0});
       }
     }
-    ts.push_back(out.runs.back().series.t);
-    Ts.push_back(out.runs.back().series.T);
+    const md::MdSeries& series = out.runs.back().series;
+    ts.push_back(series.t);
+    Ts.push_back(series.T);
+    fractions.push_back(series.mode_energy_fraction);
+    std::vector<double> p, p_error, z, z_error;
+    for (std::size_t i = 0; i < series.pressure_xx.size(); ++i) {
+      p.push_back(0.5 * (series.pressure_xx[i] + series.pressure_yy[i]));
+      p_error.push_back(series.pressure_stderr[i]);
+      z.push_back(series.compressibility[i]);
+      z_error.push_back(series.pressure_stderr[i] * z.back() / p.back());
+    }
+    pressures.push_back(std::move(p));
+    pressure_errors.push_back(std::move(p_error));
+    zs.push_back(std::move(z));
+    z_errors.push_back(std::move(z_error));
   }
+  out.pressure = compare::sample_average(pressures, pressure_errors);
+  out.compressibility = compare::sample_average(zs, z_errors);
+  out.mode_energy_fraction = compare::ensemble_statistics(fractions);
+  out.homogeneous = compare::homogeneous_window(ts.front(), out.mode_energy_fraction.mean,
+                                                scene.haff_mode_energy_fraction, scene.spec.t_end);
+  out.linear_mode_onset = md::linear_mode_onset_md(sc, scene.haff_mode_energy_fraction);
   try {
-    out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, scene.spec.t_end);
+    out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, out.homogeneous.t_max);
   } catch (const std::invalid_argument&) {  // too few samples, or no cooling: no fit (null)
     out.haff.t0 = out.haff.t0_error = out.haff.T0 = std::nan("");
   }

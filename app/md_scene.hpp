@@ -14,15 +14,18 @@
 #include "app/md_checkpoint.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/haff_fit.hpp"
+#include "compare/haff_window.hpp"
+#include "compare/sample_average.hpp"
 #include "md_bridge/md_run.hpp"
 
 namespace granvv::app {
 
 struct MdScene {
-  md::MdRunSpec spec;                // spec.seed is the first seed; member m uses seed + m
-  int ensemble = 0;                  // md.ensemble
-  std::string engine;                // md.engine
-  double checkpoint_interval = 0.0;  // md.checkpoint_interval, wall seconds (0 = none)
+  md::MdRunSpec spec;                      // spec.seed is the first seed; member m uses seed + m
+  int ensemble = 0;                        // md.ensemble
+  std::string engine;                      // md.engine
+  double checkpoint_interval = 0.0;        // md.checkpoint_interval, wall seconds (0 = none)
+  double haff_mode_energy_fraction = 0.0;  // md.haff_mode_energy_fraction
   // Every number and boolean of [md] by key: the engine reads the ones it understands.
   md::EngineSettings engine_settings;
 };
@@ -49,6 +52,14 @@ struct MdOutcome {
   md::CollisionRuleCheck collision_rule;
   compare::HaffFit haff;
   double haff_t0_theory = 0.0, haff_t0_theory_dilute = 0.0;
+  // The Haff fit's homogeneous window (compare/haff_window.hpp) from the ensemble's mean mode
+  // energy fraction, and the linear-theory onset (md_bridge/box_modes.hpp; +inf: none).
+  compare::EnsembleStatistics mode_energy_fraction;
+  compare::HomogeneousWindow homogeneous;
+  double linear_mode_onset = 0.0;
+  // The box's (P_xx + P_yy)/2 and P/(n T) averaged over the samples and the members
+  // (compare/sample_average.hpp).
+  compare::SampleAverage pressure, compressibility;
   double wall_seconds = 0.0;
   md::EngineCost cost;  // over every member
   md::EngineDetails engine_details;

@@ -25,6 +25,7 @@
 #include "app/md_scene.hpp"
 #include "app/mpi_ranks.hpp"
 #include "app/output_folder.hpp"
+#include "app/pressure_output.hpp"
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
@@ -481,6 +482,7 @@ int run_command(const RunOptions& options) {
           compare_engines(*compare_scene, scene, *outcome, *md_scene, *md);
       write_output(ranks, work / "results.h5", [&] {
         write_compare_results(work / "results.h5", *compare_scene, *md_scene, compared);
+        write_pressure_comparison(work / "results.h5", scene, *md_scene, *md);
       });
       summary["compare"] =
           compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);

@@ -31,6 +31,8 @@ const std::vector<FieldColumn>& field_columns() {
       {"v_y", &FieldSnapshot::v_y, &FieldSnapshot::v_y_stderr},
       {"T", &FieldSnapshot::T, &FieldSnapshot::T_stderr},
       {"count", &FieldSnapshot::count, &FieldSnapshot::count_stderr},
+      {"P_xx", &FieldSnapshot::P_xx, &FieldSnapshot::P_xx_stderr},
+      {"P_yy", &FieldSnapshot::P_yy, &FieldSnapshot::P_yy_stderr},
   };
   return columns;
 }

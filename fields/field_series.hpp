@@ -25,6 +25,9 @@ struct FieldSnapshot {
   // kernel-weighted particle count per bin with its error.
   std::vector<double> n_stderr, v_x_stderr, v_y_stderr, T_stderr;
   std::vector<double> count, count_stderr;
+  // Particles only: the pressure tensor's diagonal (kinetic plus contact, md_bridge/
+  // coarse_grainer.hpp), empty for a model without it.
+  std::vector<double> P_xx, P_yy, P_xx_stderr, P_yy_stderr;
 };
 
 struct FieldSeries {

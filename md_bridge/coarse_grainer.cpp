@@ -31,6 +31,32 @@ bool has_fluctuations(double weight, double denominator) {
   return denominator > 64.0 * std::numeric_limits<double>::epsilon() * weight;
 }
 
+// One bin's pressure tensor diagonal (header: "Pressure tensor"), NaN where undefined.
+struct BinPressure {
+  double xx = kNaN, yy = kNaN, xx_stderr = kNaN, yy_stderr = kNaN;
+};
+
+BinPressure bin_pressure(const Moments& m, int i, double area) {
+  BinPressure b;
+  const double W = m.weight[i];
+  const double U = m.mass[i];
+  if (!m.has_virial() || !(W > 0.0 && U > 0.0)) return b;
+  const double D = W - m.mass_weight2[i] / U;
+  if (!has_fluctuations(W, D)) return b;
+  const double n = W / area;
+  const double n_eff = W * W / m.weight2[i];
+  const double T_x = std::max(m.mvx2[i] - m.px[i] * m.px[i] / U, 0.0) / D;
+  const double T_y = std::max(m.mvy2[i] - m.py[i] * m.py[i] / U, 0.0) / D;
+  b.xx = n * T_x + m.virial_xx[i] / area;
+  b.yy = n * T_y + m.virial_yy[i] / area;
+  const double chi2 = n_eff > 1.0 ? 2.0 / (n_eff - 1.0) : kNaN;
+  // Each contact's two equal halves go together: the variance of its sum is twice the sum of
+  // the halves' squares.
+  b.xx_stderr = std::sqrt(n * T_x * n * T_x * chi2 + 2.0 * m.virial_xx2[i] / (area * area));
+  b.yy_stderr = std::sqrt(n * T_y * n * T_y * chi2 + 2.0 * m.virial_yy2[i] / (area * area));
+  return b;
+}
+
 }  // namespace
 
 Moments::Moments(int bins)
@@ -40,14 +66,22 @@ Moments::Moments(int bins)
       mass_weight2(bins, 0.0),
       px(bins, 0.0),
       py(bins, 0.0),
-      mv2(bins, 0.0) {}
+      mv2(bins, 0.0),
+      mvx2(bins, 0.0),
+      mvy2(bins, 0.0),
+      virial_xx(bins, 0.0),
+      virial_yy(bins, 0.0),
+      virial_xx2(bins, 0.0),
+      virial_yy2(bins, 0.0) {}
 
 std::vector<std::vector<double>*> Moments::arrays() {
-  return {&weight, &weight2, &mass, &mass_weight2, &px, &py, &mv2};
+  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,        &mv2,
+          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2};
 }
 
 std::vector<const std::vector<double>*> Moments::arrays() const {
-  return {&weight, &weight2, &mass, &mass_weight2, &px, &py, &mv2};
+  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,        &mv2,
+          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2};
 }
 
 Moments& Moments::operator+=(const Moments& other) {
@@ -61,6 +95,7 @@ Moments& Moments::operator+=(const Moments& other) {
     for (std::size_t i = 0; i < mine[a]->size(); ++i) (*mine[a])[i] += (*theirs[a])[i];
   }
   particles += other.particles;
+  virial_particles += other.virial_particles;
   return *this;
 }
 
@@ -110,7 +145,8 @@ std::vector<double> CoarseGrainer::bin_centres() const {
 }
 
 void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, const double* mass,
-                               int n, int stride) const {
+                               int n, int stride, const double* virial_xx,
+                               const double* virial_yy) const {
   if (n < 0) throw std::invalid_argument("coarse-graining: particle count " + std::to_string(n));
   if (stride < 2) throw std::invalid_argument("coarse-graining: stride " + std::to_string(stride));
   if (m.bins() != grid_.bins) {
@@ -120,6 +156,10 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
   if (n > 0 && (x == nullptr || v == nullptr)) {
     throw std::invalid_argument("coarse-graining: null position or velocity array");
   }
+  if ((virial_xx == nullptr) != (virial_yy == nullptr)) {
+    throw std::invalid_argument("coarse-graining: a contact virial needs both xx and yy");
+  }
+  const bool with_virial = virial_xx != nullptr;
   const double Lx = grid_.Lx;
   const int bins = grid_.bins;
 
@@ -153,6 +193,13 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
     if (xr < 0.0 || xr >= Lx) xr -= Lx * std::floor(xr / Lx);
 
     const double mc2 = mp * (cx * cx + cy * cy);
+    const double wxx = virial_xx ? virial_xx[p] : 0.0;
+    const double wyy = virial_yy ? virial_yy[p] : 0.0;
+    if (!std::isfinite(wxx) || !std::isfinite(wyy)) {
+      throw std::invalid_argument("coarse-graining: particle " + std::to_string(p) +
+                                  " has contact virial (" + describe(wxx) + ", " + describe(wyy) +
+                                  ")");
+    }
     const auto add = [&](int i, double wi) {
       m.weight[i] += wi;
       m.weight2[i] += wi * wi;
@@ -161,6 +208,12 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
       m.px[i] += wi * mp * cx;
       m.py[i] += wi * mp * cy;
       m.mv2[i] += wi * mc2;
+      m.mvx2[i] += wi * mp * cx * cx;
+      m.mvy2[i] += wi * mp * cy * cy;
+      m.virial_xx[i] += wi * wxx;
+      m.virial_yy[i] += wi * wyy;
+      m.virial_xx2[i] += wi * wi * wxx * wxx;
+      m.virial_yy2[i] += wi * wi * wyy * wyy;
     };
 
     if (kernel_ == Kernel::bin) {
@@ -198,6 +251,7 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
     for (std::size_t k = 0; k < raw.size(); ++k) add(target[k], raw[k] / total);
   }
   m.particles += n;
+  if (with_virial) m.virial_particles += n;
 }
 
 Moments CoarseGrainer::accumulate(const double* x, const double* v, const double* mass, int n,
@@ -215,12 +269,15 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
   const int bins = grid_.bins;
   fields::FieldSnapshot f;
   f.x = bin_centres();
-  for (auto* a :
-       {&f.n, &f.v_x, &f.v_y, &f.T, &f.count, &f.v_x_stderr, &f.v_y_stderr, &f.T_stderr}) {
+  for (auto* a : {&f.n, &f.v_x, &f.v_y, &f.T, &f.count, &f.v_x_stderr, &f.v_y_stderr, &f.T_stderr,
+                  &f.P_xx, &f.P_yy, &f.P_xx_stderr, &f.P_yy_stderr}) {
     a->assign(bins, kNaN);
   }
   const double area = dx_ * grid_.Ly;
   for (int i = 0; i < bins; ++i) {
+    const BinPressure p = bin_pressure(m, i, area);
+    f.P_xx[i] = p.xx, f.P_yy[i] = p.yy, f.P_xx_stderr[i] = p.xx_stderr;
+    f.P_yy_stderr[i] = p.yy_stderr;
     const double W = m.weight[i];
     const double U = m.mass[i];
     f.count[i] = W;
@@ -275,6 +332,34 @@ BoxEnergies CoarseGrainer::energies(const Moments& m) const {
   }
   e.macro_noise_y = e.macro_noise_x;
   return e;
+}
+
+BoxPressure CoarseGrainer::pressure(const Moments& m) const {
+  if (m.bins() != grid_.bins) {
+    throw std::invalid_argument("coarse-graining: moments of " + std::to_string(m.bins()) +
+                                " bins for a grid of " + std::to_string(grid_.bins));
+  }
+  BoxPressure box;
+  box.thermal = energies(m).thermal;
+  box.area = grid_.Lx * grid_.Ly;
+  if (!m.has_virial()) {
+    box.xx = box.yy = box.mean_stderr = kNaN;
+    return box;
+  }
+  const double area = dx_ * grid_.Ly;
+  double variance = 0.0;
+  for (int i = 0; i < grid_.bins; ++i) {
+    const BinPressure p = bin_pressure(m, i, area);
+    // A bin without fluctuations (N_eff <= 1) adds its contacts only, as thermal adds nothing.
+    const bool kinetic = std::isfinite(p.xx);
+    box.xx += kinetic ? p.xx : m.virial_xx[i] / area;
+    box.yy += kinetic ? p.yy : m.virial_yy[i] / area;
+    if (kinetic) variance += 0.25 * (p.xx_stderr * p.xx_stderr + p.yy_stderr * p.yy_stderr);
+  }
+  box.xx /= grid_.bins;
+  box.yy /= grid_.bins;
+  box.mean_stderr = std::sqrt(variance) / grid_.bins;
+  return box;
 }
 
 }  // namespace granvv::md

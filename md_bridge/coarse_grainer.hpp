@@ -49,11 +49,19 @@ struct CoarseGrainGrid {
 //   mass_weight2 = sum w^2 m         (sampling variance of the mean velocity)
 //   px, py       = sum w m c_x, sum w m c_y
 //   mv2          = sum w m |c|^2     (twice the kinetic energy)
-// `particles` counts the particles accumulated (exact below 2^53). Moments of disjoint
+//   mvx2, mvy2   = sum w m c_x^2, sum w m c_y^2 (the kinetic pressure tensor's diagonal)
+//   virial_xx, virial_yy   = sum w W_xx, sum w W_yy (the particles' contact virial shares,
+//                            md_bridge/particle_engine.hpp LocalVirial)
+//   virial_xx2, virial_yy2 = sum w^2 W_xx^2, sum w^2 W_yy^2 (their sampling variance)
+// `particles` counts the particles accumulated (exact below 2^53), `virial_particles` those
+// accumulated with a contact virial. Moments of disjoint
 // particle sets add: that is the MPI reduction and the merging of chunks.
 struct Moments {
   std::vector<double> weight, weight2, mass, mass_weight2, px, py, mv2;
-  double particles = 0.0;
+  std::vector<double> mvx2, mvy2, virial_xx, virial_yy, virial_xx2, virial_yy2;
+  double particles = 0.0, virial_particles = 0.0;
+  // Whether every particle came with its contact virial (the pressure is then defined).
+  bool has_virial() const { return particles > 0.0 && virial_particles == particles; }
 
   Moments() = default;
   explicit Moments(int bins);
@@ -78,6 +86,13 @@ struct Moments {
 // n has none (n_stderr is empty): its snapshot variance is set by the static structure factor
 // of the gas, not by the sample itself (Poisson only for an ideal gas); an ensemble over seeds
 // measures it.
+// Pressure tensor (docs/physics.md §11), kinetic with the bin's mean flow removed plus contact:
+//   P_aa = n T_a + sum w W_aa / A_bin,   T_a = (sum u c_a^2 - p_a^2 / U) / D,
+// with the same unbiased denominator D as T, so (P_xx + P_yy)/2 = n T exactly when no contact
+// acts. Its single-snapshot error adds in quadrature the chi^2 error of the kinetic part,
+// n T_a sqrt(2 / (N_eff - 1)), and the sampling error of the virial sum, sqrt(2 sum w^2 W_aa^2)
+// / A_bin (independent contacts, each shared in two equal halves). P_xx, P_yy are NaN where T is,
+// and everywhere when the moments carry no contact virial (Moments::has_virial).
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because
@@ -105,6 +120,21 @@ struct BoxEnergies {
   double macro_noise_x = 0.0, macro_noise_y = 0.0;
 };
 
+// Whole-box pressure from the summed moments: the bins' P_aa (kinetic part from bins with
+// N_eff > 1 only, as BoxEnergies::thermal) averaged over the equal-area bins, and the
+// single-snapshot standard error of (P_xx + P_yy)/2 from the bins' errors (independent bins).
+// thermal = sum_bins T_b count_b, so the box's P/(n T) = (P_xx + P_yy)/2 A / thermal. NaN
+// without a contact virial.
+struct BoxPressure {
+  double xx = 0.0, yy = 0.0;
+  double mean_stderr = 0.0;  // of (xx + yy)/2
+  double thermal = 0.0;      // BoxEnergies::thermal
+  double area = 0.0;         // Lx Ly
+  double mean() const { return 0.5 * (xx + yy); }
+  // P / (n T): 1 for an ideal gas.
+  double compressibility() const { return mean() * area / thermal; }
+};
+
 class CoarseGrainer {
  public:
   // Throws std::invalid_argument (one line naming the value) on bins < 1, non-positive or
@@ -120,8 +150,11 @@ class CoarseGrainer {
   // its mass (LAMMPS rmass), or mass == nullptr for unit mass. Positions outside the box (atoms
   // between neighbour-list rebuilds, docs/physics.md §10) are wrapped periodically; y is not read.
   // Throws std::invalid_argument on n < 0, stride < 2, a wrong-sized m, a non-finite position.
+  // virial_xx, virial_yy (both or neither): each particle's contact virial share, which adds
+  // the virial moments and counts the particles in Moments::virial_particles.
   void accumulate(Moments& m, const double* x, const double* v, const double* mass, int n,
-                  int stride = 3) const;
+                  int stride = 3, const double* virial_xx = nullptr,
+                  const double* virial_yy = nullptr) const;
   Moments accumulate(const double* x, const double* v, const double* mass, int n,
                      int stride = 3) const;
 
@@ -136,6 +169,7 @@ class CoarseGrainer {
   // eps (1 + m |v|^2 / 2T), harmless unless the flow is 10^6 times the thermal speed.
   fields::FieldSnapshot fields(const Moments& m) const;
   BoxEnergies energies(const Moments& m) const;
+  BoxPressure pressure(const Moments& m) const;
 
  private:
   enum class Kernel { bin, gaussian, lucy };

@@ -1,5 +1,7 @@
 #include "md_bridge/lammps_engine.hpp"
 
+#include <lammps/library.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +16,14 @@
 namespace granvv::md {
 
 namespace {
+
+// The per-atom contact stress (docs/physics.md §11). LAMMPS tallies a per-atom virial only on
+// steps scheduled for a compute that was invoked since the previous thermo output; the thermo
+// line therefore carries the box sum of the compute (kContactVirialSum; -W_xx, -W_yy per
+// particle, thermo normalises by N in lj units), which schedules it for the last step of every
+// run, where LAMMPS always prints thermo.
+constexpr const char* kContactStressCompute = "granvv_contact_stress";
+constexpr const char* kContactVirialSum = "granvv_contact_virial";
 
 double required_setting(const EngineSettings& settings, const std::string& key) {
   const auto found = settings.find(key);
@@ -87,7 +97,13 @@ void LammpsEngine::open_session(const ParticleSample& sample) {
   session.comm = options_.comm;
   lmp_ = std::make_unique<LammpsSession>(std::move(session));
   set_up_disk_gas(*lmp_, options_.box_length, options_.box_width, sample, contact_);
+  const std::string stress = kContactStressCompute, sum = kContactVirialSum;
+  lmp_->commands(
+      {"compute " + stress + " all stress/atom NULL pair",
+       "compute " + sum + " all reduce sum c_" + stress + "[1] c_" + stress + "[2]",
+       "thermo_style custom step temp epair emol etotal press c_" + sum + "[1] c_" + sum + "[2]"});
   pre_ = true;
+  virial_tallied_ = false;
 }
 
 void LammpsEngine::set_up(const ParticleSample& sample) {
@@ -169,6 +185,7 @@ double LammpsEngine::advance_to(double t) {
   const long long steps = std::max(1LL, std::llround((t - t_) / contact_.dt));
   lmp_->run(steps, pre_);
   pre_ = false;
+  virial_tallied_ = true;
   t_ += steps * contact_.dt;
   steps_ += steps;
   atom_steps_ += double(steps) * options_.particles;
@@ -178,6 +195,23 @@ double LammpsEngine::advance_to(double t) {
 LocalParticles LammpsEngine::local_particles() {
   const int n = lmp_->nlocal();
   return {n > 0 ? lmp_->x()[0] : nullptr, n > 0 ? lmp_->v()[0] : nullptr, lmp_->rmass(), n};
+}
+
+LocalVirial LammpsEngine::local_virial() {
+  LocalVirial w;
+  if (!lmp_ || !virial_tallied_) return w;
+  const int n = lmp_->nlocal();
+  auto** stress = static_cast<double**>(lammps_extract_compute(
+      lmp_->handle(), kContactStressCompute, LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  if (n > 0 && stress == nullptr)
+    throw std::runtime_error("LAMMPS gave no per-atom contact stress");
+  w.xx.resize(std::size_t(n));
+  w.yy.resize(std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    w.xx[std::size_t(i)] = -stress[i][0];
+    w.yy[std::size_t(i)] = -stress[i][1];
+  }
+  return w;
 }
 
 ParticleFrame LammpsEngine::gather_frame() {

@@ -59,6 +59,11 @@ class LammpsEngine final : public ParticleEngine {
   void between_segments() override;
   long long steps() const override { return steps_; }
   LocalParticles local_particles() override;
+  // -S_xx, -S_yy of LAMMPS's `compute stress/atom NULL pair` (stress x area with the sign of
+  // a tension: S_ab = -m v_a v_b - W_ab, of which the pair keyword keeps -W_ab), tallied on the
+  // last step of every run (the thermo line, which LAMMPS prints there, invokes it through its
+  // box sum). Empty before the first step of a run.
+  LocalVirial local_virial() override;
   ParticleFrame gather_frame() override;
   // kn and dt of the contact in use.
   EngineValues series_values() const override;
@@ -89,7 +94,9 @@ class LammpsEngine final : public ParticleEngine {
   double t_ = 0.0;
   long long steps_ = 0;
   int changes_ = 0;
-  bool pre_ = true;  // the next run must set LAMMPS up again (new atoms, pair or step)
+  bool pre_ = true;
+  bool virial_tallied_ = false;  // a step has run in this session (the compute has its values)  //
+                                 // the next run must set LAMMPS up again (new atoms, pair or step)
   int runs_ = 0;
   // Over every run: the work and the changes; of the first run: its contacts.
   double atom_steps_ = 0.0;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "md_bridge/box_modes.hpp"
 #include "md_bridge/h5md_writer.hpp"
 #include "md_bridge/moment_reduction.hpp"
 #include "md_bridge/mpi_environment.hpp"
@@ -26,7 +27,13 @@ const std::vector<MdSeriesColumn>& md_series_columns() {
       {"kinetic_noise_x", &MdSeries::kinetic_noise_x},
       {"kinetic_noise_y", &MdSeries::kinetic_noise_y},
       {"momentum_x", &MdSeries::momentum_x},
-      {"momentum_y", &MdSeries::momentum_y}};
+      {"momentum_y", &MdSeries::momentum_y},
+      {"pressure_xx", &MdSeries::pressure_xx},
+      {"pressure_yy", &MdSeries::pressure_yy},
+      {"pressure_stderr", &MdSeries::pressure_stderr},
+      {"compressibility", &MdSeries::compressibility},
+      {"mode_energy_fraction", &MdSeries::mode_energy_fraction},
+      {"structure_factor", &MdSeries::structure_factor}};
   return columns;
 }
 
@@ -85,10 +92,20 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   };
 
   auto observe = [&](bool snapshot) {
+    const LocalVirial w = engine.local_virial();
     const LocalParticles p = engine.local_particles();
-    Moments m = grainer.accumulate(p.x, p.v, p.mass, p.count);
+    const bool virial = w.xx.size() == std::size_t(p.count) && w.yy.size() == w.xx.size() &&
+                        !(p.count > 0 && w.xx.empty());
+    Moments m(grainer.grid().bins);
+    grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
+                       virial ? w.yy.data() : nullptr);
+    if (virial) m.virial_particles = m.particles;  // also a rank without particles
     allreduce(m, engine.comm());
+    BoxModeSums modes = box_mode_sums(p.x, p.v, p.mass, p.count, lx, ly);
+    allreduce(modes, engine.comm());
     const BoxEnergies e = grainer.energies(m);
+    const BoxPressure pressure = grainer.pressure(m);
+    const BoxModes box = box_modes(modes);
     auto& s = result.series;
     s.t.push_back(t);
     s.T.push_back(e.thermal / e.particles);
@@ -100,6 +117,12 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     s.energy_total.push_back(e.kinetic_total);
     s.momentum_x.push_back(e.momentum_x);
     s.momentum_y.push_back(e.momentum_y);
+    s.pressure_xx.push_back(pressure.xx);
+    s.pressure_yy.push_back(pressure.yy);
+    s.pressure_stderr.push_back(pressure.mean_stderr);
+    s.compressibility.push_back(pressure.compressibility());
+    s.mode_energy_fraction.push_back(box.energy_fraction);
+    s.structure_factor.push_back(box.structure_factor);
     const EngineValues own = engine.series_values();
     if (s.engine.empty()) {
       for (const auto& [name, value] : own) s.engine.push_back({name, {}});

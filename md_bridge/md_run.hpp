@@ -41,6 +41,13 @@ struct MdSeries {
   // Expected flow energy that the sampling noise of the bin means puts into energy_kinetic_x/y
   // (BoxEnergies::macro_noise_x/y): subtract it to see the macroscopic flow itself.
   std::vector<double> kinetic_noise_x, kinetic_noise_y;
+  // The box's pressure tensor diagonal (kinetic plus contact, BoxPressure), the single-sample
+  // standard error of (P_xx + P_yy)/2 and P/(n T); NaN where the engine gave no contact virial
+  // (t = 0 for LAMMPS).
+  std::vector<double> pressure_xx, pressure_yy, pressure_stderr, compressibility;
+  // The box's lowest Fourier modes (box_modes.hpp): their noise-corrected share of the kinetic
+  // energy and the density modes' structure factor.
+  std::vector<double> mode_energy_fraction, structure_factor;
   // The engine's own numbers at every sample (ParticleEngine::series_values), in its order.
   std::vector<std::pair<std::string, std::vector<double>>> engine;
 };

@@ -11,11 +11,12 @@ namespace granvv::md {
 void allreduce(Moments& m, MPI_Comm comm) {
   const auto arrays = m.arrays();
   const std::size_t bins = static_cast<std::size_t>(m.bins());
-  // Layout: the per-bin arrays one after another, then the particle count.
+  // Layout: the per-bin arrays one after another, then the particle counts.
   std::vector<double> buffer;
-  buffer.reserve(arrays.size() * bins + 1);
+  buffer.reserve(arrays.size() * bins + 2);
   for (const auto* a : arrays) buffer.insert(buffer.end(), a->begin(), a->end());
   buffer.push_back(m.particles);
+  buffer.push_back(m.virial_particles);
 
   const int rc = MPI_Allreduce(MPI_IN_PLACE, buffer.data(), static_cast<int>(buffer.size()),
                                MPI_DOUBLE, MPI_SUM, comm);
@@ -28,7 +29,8 @@ void allreduce(Moments& m, MPI_Comm comm) {
     std::copy(it, it + static_cast<std::ptrdiff_t>(bins), a->begin());
     it += static_cast<std::ptrdiff_t>(bins);
   }
-  m.particles = *it;
+  m.particles = *it++;
+  m.virial_particles = *it;
 }
 
 }  // namespace granvv::md

@@ -45,6 +45,19 @@ struct LocalParticles {
   int count = 0;
 };
 
+// One rank's contact virial per local particle, in the order of local_particles(): particle i's
+// share of the pair sum sum_{pairs} r_ij (x) F_ij (r_ij = r_i - r_j, F_ij the contact force on i
+// from j, repulsion positive; half of each pair to each partner), so that the values summed
+// over every particle of every rank are the box's contact virial W_xx, W_yy (energy, MD units;
+// the contact part of P_aa times the area, docs/physics.md §11). An engine with continuous
+// contacts gives the instantaneous value; an event-driven engine gives the collisional transfer
+// sum over collisions of r_ij (x) Delta p_ij divided by the time since the previous sample,
+// whose expectation is the same. Both empty: no contact stress measured at this state (before
+// the first step of a run, or an engine that cannot give it); the pressure is then not defined.
+struct LocalVirial {
+  std::vector<double> xx, yy;
+};
+
 // Every particle ordered by its ID, xyz triplets, on every rank.
 struct ParticleFrame {
   std::vector<double> x, v;
@@ -105,6 +118,9 @@ class ParticleEngine {
 
   // This rank's particles, for the coarse-grainer.
   virtual LocalParticles local_particles() = 0;
+  // This rank's contact virial, per particle of local_particles() (collective: an engine may
+  // need its ranks to exchange contributions of ghost particles).
+  virtual LocalVirial local_virial() { return {}; }
   // All particles, for a particle frame (collective).
   virtual ParticleFrame gather_frame() = 0;
   // Engine-specific numbers of the current state, taken at every time-series sample.

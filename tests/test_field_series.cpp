@@ -130,10 +130,40 @@ TEST(FieldSeries, EmptySeriesKeepsItsGeometry) {
 
 TEST(FieldSeries, SnapshotsThatDisagreeInLengthAreRefused) {
   FieldSeries s;
-  s.snapshots.push_back(
-      {0.0, "initial", {0, 0.5}, {1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {}, {}, {}});
-  s.snapshots.push_back(
-      {1.0, "final", {0, 0.5}, {1, 1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {}, {}, {}});
+  s.snapshots.push_back({0.0,
+                         "initial",
+                         {0, 0.5},
+                         {1, 1},
+                         {0, 0},
+                         {},
+                         {1, 1},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {}});
+  s.snapshots.push_back({1.0,
+                         "final",
+                         {0, 0.5},
+                         {1, 1, 1},
+                         {0, 0},
+                         {},
+                         {1, 1},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {}});
   const fs::path file = scratch_file("ragged");
   H5::H5File h5(file.string(), H5F_ACC_TRUNC);
   H5::Group g = h5.createGroup("/fields");

@@ -64,8 +64,8 @@ def _read_group(f, path):
 
 def _read_compare(f, root="compare"):
     """The /compare group of a side-by-side run: attrs, t, x, collision_clock, and its subgroups
-    (fields/<name>, peak, energy, inertia, modes), or None when the run compared nothing. With
-    compare.closures, closures[<name>] holds the same for each closure (/compare/closures/<name>)."""
+    (fields/<name>, peak, energy, inertia, modes, pressure), or None when the run compared nothing.
+    With compare.closures, closures[<name>] holds the same for each closure (/compare/closures/<name>)."""
     top = _read_group(f, root)
     if top is None:
         return None
@@ -75,7 +75,7 @@ def _read_compare(f, root="compare"):
             g = _read_group(f, f"{root}/fields/{name}")
             if g is not None:
                 out["fields"][name] = g
-    for sub in ("peak", "energy", "inertia", "modes"):
+    for sub in ("peak", "energy", "inertia", "modes", "pressure"):
         out[sub] = _read_group(f, f"{root}/{sub}")
     if root == "compare" and "compare/closures" in f and isinstance(f["compare/closures"], h5py.Group):
         for name in f["compare/closures"]:
@@ -249,6 +249,15 @@ def cmp_rows(g, name, shape):
 def cmp_vec(g, name, size):
     a = arr(g, name, 1)
     return a if a is not None and a.ndim == 1 and a.size == size and np.isfinite(a).any() else None
+
+
+def cmp_pressure(run):
+    """/compare/pressure (the particles' pressure against the hydro closure's p(n, T), MD units), or Skip."""
+    C = run.compare
+    P = C.get("pressure") if C else None
+    if P is None:
+        raise Skip("no /compare/pressure (no comparison, or an engine without a contact virial)")
+    return P
 
 
 def cmp_window(C):
