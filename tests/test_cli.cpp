@@ -475,10 +475,10 @@ TEST(CliUsage, UnknownSubcommandOrOptionFails) {
 TEST(CliUsage, UnknownCommandIsNamed) {
   const CliStreams r = run_cli_streams("frobnicate");
   EXPECT_EQ(r.exit_code, 2) << describe(r);
-  EXPECT_EQ(
-      r.err,
-      "granvv: error: unknown command 'frobnicate'; the commands are run, resume, sweep, list, "
-      "report (granvv --help)\n");
+  EXPECT_EQ(r.err,
+            "granvv: error: unknown command 'frobnicate'; the commands are run, resume, sweep, "
+            "atlas, list, "
+            "report (granvv --help)\n");
 }
 
 // Non-UTF-8 bytes: refused in case.name itself; a case file's name with them gives a case.name

@@ -83,6 +83,10 @@ TEST(FieldSeries, CellsWithMovingPositionsAndNoErrorsReadBackExactly) {
                          {},
                          {},
                          {},
+                         {},
+                         {},
+                         {},
+                         {},
                          {}});
   s.snapshots.push_back({0.5,
                          "final",
@@ -91,6 +95,10 @@ TEST(FieldSeries, CellsWithMovingPositionsAndNoErrorsReadBackExactly) {
                          {0.1, 0.1, 0.3},
                          {0.0, -0.2, 0.1},
                          {0.9, 0.8, 0.7},
+                         {},
+                         {},
+                         {},
+                         {},
                          {},
                          {},
                          {},
@@ -114,7 +122,11 @@ TEST(FieldSeries, BinsWithErrorsCountsAndNaNReadBackExactly) {
                          {0.04, kNaN},
                          {0.05, kNaN},
                          {3, 0},
-                         {0.5, 0.1}});
+                         {0.5, 0.1},
+                         {},
+                         {},
+                         {},
+                         {}});
   const FieldSeries back = round_trip(s, "bins");
   expect_same_series(s, back);
   expect_same(back.bin_edges, {-2.0, 0.0, 2.0}, "edges of on_bins");
