@@ -1,7 +1,6 @@
 #include "app/atlas_command.hpp"
 
 #include <H5Cpp.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -111,14 +110,12 @@ struct LadderRung {
   std::string skipped;  // why it does not apply (empty: it runs)
 };
 
-std::vector<LadderRung> ladder_of(const AtlasScene& scene, const std::string& initial_type) {
+// Every rung that applies; the Haff ODE runs on every scene, even where it cannot follow the
+// fields, because it costs microseconds and the atlas shows how far it is.
+std::vector<LadderRung> ladder_of(const AtlasScene& scene) {
   std::vector<LadderRung> rungs;
   for (const auto& model : kLadder) {
     LadderRung r{model, ""};
-    if (model == "haff_ode" && initial_type != "uniform") {
-      r.skipped = "not homogeneous cooling (initial.type = " + initial_type +
-                  "); run for the record, it cannot follow the fields";
-    }
     if (model == "flow_by_inertia" && !scene.has_inertia_reference) {
       r.skipped = "the initial velocity has no flow-by-inertia reference";
     }
@@ -127,8 +124,6 @@ std::vector<LadderRung> ladder_of(const AtlasScene& scene, const std::string& in
     }
     rungs.push_back(r);
   }
-  // The Haff ODE is cheap: it is run on every scene, so that the atlas shows how far it is.
-  rungs.front().skipped.clear();
   rungs.push_back({"particles/lammps", scene.particles
                                            ? "particle rungs are not in this version of the atlas"
                                            : "md.enabled = false"});
@@ -311,7 +306,7 @@ int atlas_command(const AtlasOptions& options) {
     }
     observables = judged_observables(config, initial_type == "uniform", scene.crossing_levels);
     grid = grid_of(config, scene.case_cells);
-    ladder = ladder_of(scene, initial_type);
+    ladder = ladder_of(scene);
     // The compared times: the hydro's own output times, or those of a particle scene.
     AtlasSetting probe{"hydro/" + hydro.closure, scene.case_cells, 1.0};
     const CaseConfig first = CaseConfig::from_string(scene.source.text, scene.source.origin,
