@@ -482,7 +482,8 @@ int run_command(const RunOptions& options) {
           compare_engines(*compare_scene, scene, *outcome, *md_scene, *md);
       write_output(ranks, work / "results.h5", [&] {
         write_compare_results(work / "results.h5", *compare_scene, *md_scene, compared);
-        write_pressure_comparison(work / "results.h5", scene, *md_scene, *md);
+        write_pressure_comparison(work / "results.h5", scene, compare_scene->closures, *md_scene,
+                                  *md);
       });
       summary["compare"] =
           compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "fields/hdf5_datasets.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::testing {
@@ -104,6 +105,27 @@ TEST(CompareClosures, ShortQuickstartComparesEachClosureWithTheSameParticles) {
   }
   EXPECT_FALSE(h5.nameExists("/hydro_closures/dilute")) << "the first closure's hydro is /hydro";
   EXPECT_TRUE(h5.nameExists("/hydro_closures/enskog/timeseries/phi_max"));
+
+  // The particles' pressure against every closure's equation of state, at the particles' own
+  // bins: the first closure's is /compare/pressure/eos, and Enskog's over dilute's is
+  // F_p = 1 + (1 + r) phi chi(phi) with Henderson's chi at phi = phi0 n (docs/physics.md §9),
+  // to round-off.
+  const auto dilute_eos =
+      h5::read_doubles(h5.openGroup("/compare/pressure/closures/dilute"), "eos");
+  const auto enskog_eos =
+      h5::read_doubles(h5.openGroup("/compare/pressure/closures/enskog"), "eos");
+  EXPECT_EQ(dilute_eos.values, h5::read_doubles(h5.openGroup("/compare/pressure"), "eos").values);
+  const auto n_md = h5::read_doubles(h5.openGroup("/compare/fields/n"), "md");
+  ASSERT_EQ(n_md.values.size(), enskog_eos.values.size());
+  const double phi0 = s["md"]["area_fraction"].get<double>();
+  const double restitution = s["md"]["restitution"].get<double>();
+  for (std::size_t i = 0; i < n_md.values.size(); ++i) {
+    const double phi = phi0 * n_md.values[i];
+    const double chi = (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi));
+    EXPECT_NEAR(enskog_eos.values[i] / dilute_eos.values[i], 1 + (1 + restitution) * phi * chi,
+                1e-12)
+        << i;
+  }
   fs::remove_all(dir);
 }
 

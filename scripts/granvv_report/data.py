@@ -77,6 +77,9 @@ def _read_compare(f, root="compare"):
                 out["fields"][name] = g
     for sub in ("peak", "energy", "inertia", "modes", "pressure"):
         out[sub] = _read_group(f, f"{root}/{sub}")
+    if out["pressure"] is not None and f"{root}/pressure/closures" in f:
+        out["pressure"]["closures"] = {name: _read_group(f, f"{root}/pressure/closures/{name}")
+                                       for name in f[f"{root}/pressure/closures"]}
     if root == "compare" and "compare/closures" in f and isinstance(f["compare/closures"], h5py.Group):
         for name in f["compare/closures"]:
             out["closures"][name] = _read_compare(f, f"compare/closures/{name}")
