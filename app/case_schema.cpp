@@ -137,6 +137,15 @@ std::vector<KeySpec> rows_without_initial() {
       {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
        "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
        "disks (docs/physics.md §9)"},
+      {"hydro.viscosity_factor", kReal, 1.0, open_closed(0, 100),
+       "multiplies the closure's viscosities: an injected model error 1 + eps for the atlas's "
+       "comparison power (docs/atlas.md); 1 = the closure as written"},
+      {"hydro.conductivity_factor", kReal, 1.0, open_closed(0, 100),
+       "multiplies the closure's heat conductivity (an injected model error, as "
+       "hydro.viscosity_factor)"},
+      {"hydro.cooling_factor", kReal, 1.0, open_closed(0, 100),
+       "multiplies the closure's cooling sink, and so Haff's 1/t0 (an injected model error, as "
+       "hydro.viscosity_factor)"},
 
       // [analysis]
       {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),

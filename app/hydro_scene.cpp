@@ -102,6 +102,8 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
   s.closure = c.string("hydro.closure");
   s.cooling = hydro::cooling_rate_from_name(c.string("physics.cooling"));
   s.area_fraction = c.real("physics.area_fraction");
+  s.factors = {c.real("hydro.viscosity_factor"), c.real("hydro.conductivity_factor"),
+               c.real("hydro.cooling_factor")};
   if (c.boolean("md.enabled") && c.boolean("compare.enabled")) {
     const double scene = c.real("md.area_fraction");
     if (s.area_fraction != 0.0 && s.area_fraction != scene) {  // 0: not given
@@ -126,7 +128,7 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
 }  // namespace
 
 hydro::ClosureParameters closure_parameters(const HydroScene& scene) {
-  return {scene.physics, {{"area_fraction", scene.area_fraction}}, scene.cooling};
+  return {scene.physics, {{"area_fraction", scene.area_fraction}}, scene.cooling, scene.factors};
 }
 
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene) {

@@ -22,6 +22,9 @@ struct HydroScene {
   // physics.area_fraction (in a comparison: the particle scene's), 0 = not given.
   double area_fraction = 0.0;
   hydro::CoolingRate cooling = hydro::CoolingRate::small_q;
+  // hydro.viscosity_factor, hydro.conductivity_factor, hydro.cooling_factor: injected model
+  // errors (hydro/transport_factors.hpp).
+  hydro::TransportFactors factors;
   hydro::InitialParameters initial;
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (app/compare_scene.hpp).

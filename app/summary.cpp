@@ -95,6 +95,9 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["closure"] = scene.closure;
   h["cooling"] = hydro::to_string(scene.cooling);
   h["area_fraction"] = scene.area_fraction;
+  h["transport_factors"] = {{"viscosity", scene.factors.viscosity},
+                            {"conductivity", scene.factors.conductivity},
+                            {"cooling", scene.factors.cooling}};
 
   std::optional<double> tau;
   if (run.status == hydro::RunStatus::singularity && out.singularity) tau = out.singularity->tau;

@@ -22,6 +22,7 @@
 
 #include "hydro/cooling_rate.hpp"
 #include "hydro/physics.hpp"
+#include "hydro/transport_factors.hpp"
 
 namespace granvv::hydro {
 
@@ -107,11 +108,12 @@ class Closure {
 
 // What a closure is built from: the paper's K and q, closure-specific named parameters (the
 // Enskog closure's "area_fraction"), and the inelastic loss of the cooling term, which every
-// closure applies.
+// closure applies; and injected model errors (identity: none), which every closure takes.
 struct ClosureParameters {
   Physics physics;
   std::map<std::string, double> extra;
   CoolingRate cooling = CoolingRate::small_q;
+  TransportFactors factors{};
 };
 
 // A closure parameter outside what the closure can use: its name in `extra` and why.
@@ -120,8 +122,9 @@ struct ClosureParameterProblem {
   std::string reason;     // "the enskog closure needs an area fraction in (0, 0.69)"
 };
 
-// The registered closures by name ("dilute": paper Eqs. (1)-(2)). Throws std::invalid_argument
-// for an unknown name, listing the known ones.
+// The registered closures by name ("dilute": paper Eqs. (1)-(2)), wrapped in a ScaledClosure
+// when params.factors is not the identity (hydro/scaled_closure.hpp). Throws
+// std::invalid_argument for an unknown name, listing the known ones.
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
 std::vector<std::string> closure_names();
 // The first parameter of `params` that closure `name` cannot use (none: nullopt). Throws like

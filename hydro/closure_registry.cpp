@@ -6,6 +6,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/enskog_closure.hpp"
+#include "hydro/scaled_closure.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -44,7 +45,9 @@ const RegisteredClosure& find_closure(const std::string& name) {
 }  // namespace
 
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params) {
-  return find_closure(name).make(params);
+  std::unique_ptr<Closure> closure = find_closure(name).make(params);
+  if (params.factors.is_identity()) return closure;
+  return std::make_unique<ScaledClosure>(std::move(closure), params.factors);
 }
 
 std::optional<ClosureParameterProblem> closure_parameter_problem(const std::string& name,
