@@ -42,7 +42,6 @@ void elastic_gas(benchmark::State& state, double area_fraction) {
       benchmark::Counter(double(collisions), benchmark::Counter::kIsRate);
   state.counters["events_per_s"] = benchmark::Counter(double(events), benchmark::Counter::kIsRate);
   state.counters["events_per_collision"] = double(events) / double(collisions);
-  state.counters["calendar_per_disk"] = double(engine.calendar_size()) / double(scene.particles);
 }
 
 void EventDrivenElasticDilute(benchmark::State& state) {

@@ -21,10 +21,10 @@ constexpr double kDisksPerCell = 1.0;
 // The cell edge exceeds sigma by this much, so that a partner at contact is always in the
 // neighbourhood despite the round-off of positions near a face.
 constexpr double kCellMargin = 1e-9;
-// After this many collisions per disk the disks are put in the order of their cells again (at
-// the end of a segment: positions synchronised, calendar made anew), so that neighbours stay
-// near each other in memory as the gas mixes.
-constexpr double kCollisionsPerReorder = 20.0;
+// After this many events per disk the disks are renumbered in the order of their cells, so
+// that neighbours stay near each other in memory as the gas mixes (a disk crosses a cell about
+// every event).
+constexpr double kEventsPerReorder = 1.0;
 
 double required_setting(const EngineSettings& settings, const std::string& key) {
   const auto found = settings.find(key);
@@ -96,31 +96,23 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
     throw std::invalid_argument("event-driven engine: " + std::to_string(n) +
                                 " particles for a scene of " + std::to_string(options_.particles));
   }
-  // Disks in the order of their cells, so that neighbours lie near each other in memory.
-  std::vector<std::pair<int, int>> by_cell(x.size() / 3);
-  for (int i = 0; i < n; ++i) {
-    by_cell[std::size_t(i)] = {
-        cells_->cell_at(periodic_image(x[3 * std::size_t(i)], options_.box_length),
-                        periodic_image(x[3 * std::size_t(i) + 1], options_.box_width)),
-        i};
-  }
-  std::sort(by_cell.begin(), by_cell.end());
   disks_.assign(std::size_t(n), Disk{});
+  soonest_.assign(std::size_t(n), Soonest{});
   id_.assign(std::size_t(n), 0);
   cells_->clear();
-  for (int k = 0; k < n; ++k) {
-    const auto [cell, i] = by_cell[std::size_t(k)];
-    Disk& d = disks_[std::size_t(k)];
+  for (int i = 0; i < n; ++i) {
+    Disk& d = disks_[std::size_t(i)];
     d.x = periodic_image(x[3 * std::size_t(i)], options_.box_length);
     d.y = periodic_image(x[3 * std::size_t(i) + 1], options_.box_width);
     d.vx = v[3 * std::size_t(i)];
     d.vy = v[3 * std::size_t(i) + 1];
     d.t = t;
-    id_[std::size_t(k)] = i;
-    cells_->insert(k, cell);
+    id_[std::size_t(i)] = i;
+    cells_->insert(i, cells_->cell_at(d.x, d.y));
   }
   t_ = t;
-  calendar_.clear();
+  calendar_.reset(n);
+  order_by_cell();
   for (int i = 0; i < n; ++i) predict(i, t);
   mass_.assign(std::size_t(n), 1.0);
   x_.assign(3 * std::size_t(n), 0.0);
@@ -152,51 +144,45 @@ void EventDrivenEngine::fly(Disk& d, double t) const {
 // Touching a disk of `cell` (at its position now, computed without moving it) sooner than
 // the soonest collision found so far.
 void EventDrivenEngine::scan(int i, double now, int cell) {
-  Disk& a = disks_[std::size_t(i)];
+  const Disk& a = disks_[std::size_t(i)];
+  Soonest& s = soonest_[std::size_t(i)];
   for (int j = cells_->first(cell); j >= 0; j = cells_->next(j)) {
     if (j == i) continue;
     const Disk& b = disks_[std::size_t(j)];
     const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
     const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
     const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
-    if (now + dt < a.soonest) {
-      a.soonest = now + dt;
-      a.partner = j;
-      a.partner_count = b.count;
+    if (now + dt < s.t) {
+      s.t = now + dt;
+      s.partner = j;
+      s.partner_count = b.count;
     }
   }
 }
 
 // The earlier of its soonest collision and leaving its cell.
 void EventDrivenEngine::schedule(int i, double now) {
-  const Disk& a = disks_[std::size_t(i)];
+  Disk& a = disks_[std::size_t(i)];
   const int cell = cells_->cell_of(i);
-  ParticleEvent e;
-  e.i = i;
-  e.count_i = a.count;
-  e.t = a.soonest;
-  e.partner = a.partner;
-  e.count_partner = a.partner_count;
+  double soonest = soonest_[std::size_t(i)].t;
+  a.event = kCollision;
   const double x_low = cells_->x_low(cell), y_low = cells_->y_low(cell);
   if (a.vx != 0.0) {
     const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
     const double t = now + std::max(0.0, (edge - a.x) / a.vx);
-    if (t < e.t) e.t = t, e.partner = -1;
+    if (t < soonest) soonest = t, a.event = 0;
   }
   if (a.vy != 0.0) {
     const double edge = a.vy > 0.0 ? y_low + cells_->cell_width() : y_low;
     const double t = now + std::max(0.0, (edge - a.y) / a.vy);
-    if (t < e.t) e.t = t, e.partner = -2;
+    if (t < soonest) soonest = t, a.event = 1;
   }
-  if (e.t == kNever) return;  // at rest and alone: others will find it
-  calendar_.push(e);
+  calendar_.set(i, soonest);  // never if at rest and alone: others will find it
 }
 
 void EventDrivenEngine::predict(int i, double now) {
-  Disk& a = disks_[std::size_t(i)];
-  fly(a, now);
-  a.soonest = kNever;
-  a.partner = -1;
+  fly(disks_[std::size_t(i)], now);
+  soonest_[std::size_t(i)] = {kNever, -1, 0};
   for (const int c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
   schedule(i, now);
 }
@@ -205,12 +191,12 @@ void EventDrivenEngine::predict(int i, double now) {
 // one themselves; those that did not cannot collide sooner than the soonest found then, unless
 // that partner has changed course (then the whole neighbourhood is scanned again).
 void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int direction) {
-  Disk& a = disks_[std::size_t(i)];
-  if (a.partner >= 0 && disks_[std::size_t(a.partner)].count != a.partner_count) {
+  const Soonest& s = soonest_[std::size_t(i)];
+  if (s.partner >= 0 && disks_[std::size_t(s.partner)].count != s.partner_count) {
     predict(i, now);
     return;
   }
-  fly(a, now);
+  fly(disks_[std::size_t(i)], now);
   for (const int c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
   schedule(i, now);
 }
@@ -275,28 +261,29 @@ double EventDrivenEngine::advance_to(double t) {
   std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
   const double n = double(disks_.size());
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
-  while (!calendar_.empty() && calendar_.next().t <= t) {
-    const ParticleEvent e = calendar_.next();
-    calendar_.pop();
-    const Disk& a = disks_[std::size_t(e.i)];
-    if (e.count_i != a.count) continue;  // stale: the disk has collided since
-    if (e.is_collision() && e.count_partner != disks_[std::size_t(e.partner)].count) {
-      predict(e.i, e.t);  // the partner changed course: look again from here
+  while (calendar_.next_time() <= t) {
+    if (double(events_ - ordered_at_) > kEventsPerReorder * n) order_by_cell();
+    const int i = calendar_.next();
+    const double now = calendar_.next_time();
+    const int axis = disks_[std::size_t(i)].event;
+    const Soonest s = soonest_[std::size_t(i)];
+    if (axis == kCollision && s.partner_count != disks_[std::size_t(s.partner)].count) {
+      predict(i, now);  // the partner changed course: look again from here
       continue;
     }
     ++events_, ++all_events_;
-    if (e.is_collision()) {
-      collide(e.i, e.partner, e.t);
+    if (axis == kCollision) {
+      collide(i, s.partner, now);
       if (double(segment_collisions_) > budget) {
         std::ostringstream why;
-        why << "event-driven engine: event-rate runaway at t = " << e.t << " (from t = " << begin
+        why << "event-driven engine: event-rate runaway at t = " << now << " (from t = " << begin
             << " to " << t << ", " << segment_collisions_ << " collisions of " << disks_.size()
             << " disks, beyond md.max_collision_rate = " << options_.max_collision_rate
             << " per disk and unit time): inelastic collapse; raise md.collapse_speed";
         throw std::runtime_error(why.str());
       }
     } else {
-      cross(e.i, -1 - e.partner, e.t);
+      cross(i, axis, now);
     }
   }
   t_ = t;
@@ -311,15 +298,45 @@ double EventDrivenEngine::advance_to(double t) {
   }
   collision_rate_ = interval > 0.0 ? 2.0 * double(segment_collisions_) / (n * interval) : 0.0;
   synchronise();
-  if (double(collisions_ - ordered_at_) > kCollisionsPerReorder * n) {
-    const CollisionVirial last = virial_;
-    const double rate = collision_rate_;
-    start(x_, v_, t_);
-    virial_ = last;
-    collision_rate_ = rate;
-    ordered_at_ = collisions_;
-  }
   return t_;
+}
+
+void EventDrivenEngine::order_by_cell() {
+  const std::size_t n = disks_.size();
+  // A counting sort by cell (stable: within a cell, the order they had).
+  std::vector<int> begin(std::size_t(cells_->columns()) * std::size_t(cells_->rows()) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++begin[std::size_t(cells_->cell_of(int(i))) + 1];
+  for (std::size_t c = 1; c < begin.size(); ++c) begin[c] += begin[c - 1];
+  std::vector<int> renumbered(n);  // new number of each disk
+  std::vector<int> by_cell(n);     // old number of each new one
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = begin[std::size_t(cells_->cell_of(int(i)))]++;
+    renumbered[i] = k;
+    by_cell[std::size_t(k)] = int(i);
+  }
+  std::vector<int> cell(n);
+  for (std::size_t k = 0; k < n; ++k) cell[k] = cells_->cell_of(by_cell[k]);
+  const auto partner = [&](int j) { return j >= 0 ? renumbered[std::size_t(j)] : j; };
+  std::vector<Disk> disks(n);
+  std::vector<Soonest> soonest(n);
+  std::vector<int> id(n);
+  std::vector<double> times(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = std::size_t(by_cell[k]);
+    disks[k] = disks_[i];
+    soonest[k] = soonest_[i];
+    soonest[k].partner = partner(soonest[k].partner);
+    id[k] = id_[i];
+    times[k] = calendar_.time(int(i));
+  }
+  disks_.swap(disks);
+  soonest_.swap(soonest);
+  id_.swap(id);
+  calendar_.reset(times);
+  cells_->clear();
+  // Inserted at the head: from the last, so that every cell lists its disks in memory order.
+  for (std::size_t k = n; k-- > 0;) cells_->insert(int(k), cell[k]);
+  ordered_at_ = events_;
 }
 
 void EventDrivenEngine::synchronise() {
@@ -415,7 +432,6 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   made_ = std::chrono::steady_clock::now();
   disks_.clear();
   t_ = t;
-  ordered_at_ = collisions_;
   if (!p.x.empty()) start(p.x, p.v, t);
 }
 

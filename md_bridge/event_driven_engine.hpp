@@ -85,23 +85,28 @@ class EventDrivenEngine final : public ParticleEngine {
   long long collisions_changed() const { return changed_; }
   // Current time and the disks' positions and velocities (xyz triplets) at it.
   double time() const { return t_; }
-  // Entries in the event calendar, stale ones included (N live ones at most).
-  std::size_t calendar_size() const { return calendar_.size(); }
   // The smallest centre distance of any two disks now (sigma = 1 means touching).
   double smallest_separation() const;
 
   static constexpr double kCheckSpeed = 1.0;
 
  private:
+  // What the neighbour scan reads of every candidate: 48 bytes, in cell order (order_by_cell).
   struct Disk {
     double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
-    double t = 0.0;  // its own clock: (x, y) is its position at t
-    // The soonest collision with a disk of its neighbourhood found since its last collision
-    // (absolute time, the partner and the partner's count then; kNever, -1 if none).
-    double soonest = 0.0;
+    double t = 0.0;           // its own clock: (x, y) is its position at t
+    std::uint32_t count = 0;  // collisions so far
+    // What its calendar entry is: its soonest collision (kCollision) or leaving its cell along
+    // axis 0 (x) or 1 (y).
+    std::int32_t event = -1;
+  };
+  static constexpr std::int32_t kCollision = -1;
+  // The soonest collision with a disk of its neighbourhood found since its last full scan
+  // (absolute time, the partner and the partner's count then; never, -1 if none).
+  struct Soonest {
+    double t = 0.0;
     int partner = -1;
     std::uint32_t partner_count = 0;
-    std::uint32_t count = 0;
   };
   void start(const std::vector<double>& x, const std::vector<double>& v, double t);
   void fly(Disk& d, double t) const;
@@ -114,21 +119,25 @@ class EventDrivenEngine final : public ParticleEngine {
   void collide(int i, int j, double now);
   void cross(int i, int axis, double now);
   void synchronise();
+  // Renumbers the disks in the order of their cells (cells, calendar and partners follow), so
+  // that the disks of neighbouring cells lie near each other in memory as the gas mixes.
+  void order_by_cell();
   double minimum_image(double d, double length) const;
 
   EventDrivenOptions options_;
   std::chrono::steady_clock::time_point made_;
   double wall_before_ = 0.0;
   int rank_ = 0;
-  std::vector<Disk> disks_;  // ordered by cell at the start (memory near neighbours)
-  std::vector<int> id_;      // particle ID of each disk
+  std::vector<Disk> disks_;  // in cell order after each order_by_cell
+  std::vector<Soonest> soonest_;
+  std::vector<int> id_;  // particle ID of each disk
   std::unique_ptr<PeriodicCells> cells_;
   EventCalendar calendar_;
   std::vector<double> x_, v_, mass_;  // the disks at t_ (xyz), for the run loop
   double t_ = 0.0;
   // This run.
   long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0;
-  long long ordered_at_ = 0;  // collisions_ when the disks were last put in cell order
+  long long ordered_at_ = 0;  // events_ when the disks were last put in cell order
   // Over every run.
   int runs_ = 0;
   long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0;
