@@ -133,6 +133,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
 
 void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
+  tally_.clear();
   events_ = collisions_ = crossings_ = changed_ = ordered_at_ = 0;
   ++runs_;
 }
@@ -245,6 +246,7 @@ void EventDrivenEngine::collide(int i, int j, double now) {
         std::clamp(int(std::floor((mid / options_.box_length + 0.5) * options_.virial_bins)), 0,
                    options_.virial_bins - 1);
     virial_sum_[std::size_t(bin)] += k * separation2;
+    tally_.add(i, j, k * dx * dx, k * dy * dy);
   }
   ++a.count;
   ++b.count;
@@ -273,6 +275,7 @@ double EventDrivenEngine::advance_to(double t) {
   const double begin = t_;
   segment_collisions_ = 0;
   std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
+  tally_.begin(disks_.size());
   const double n = double(disks_.size());
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
   while (!calendar_.empty() && calendar_.next().t <= t) {
@@ -301,6 +304,7 @@ double EventDrivenEngine::advance_to(double t) {
   }
   t_ = t;
   const double interval = t - begin;
+  tally_.finish(id_, interval);
   virial_.t_begin = begin;
   virial_.t_end = t;
   virial_.box = 0.0;
@@ -337,6 +341,10 @@ void EventDrivenEngine::synchronise() {
 LocalParticles EventDrivenEngine::local_particles() {
   if (rank_ != 0) return {};
   return {x_.data(), v_.data(), mass_.data(), int(disks_.size())};
+}
+
+LocalVirial EventDrivenEngine::local_virial() {
+  return rank_ == 0 ? tally_.last() : LocalVirial{};
 }
 
 ParticleFrame EventDrivenEngine::gather_frame() {
@@ -416,6 +424,7 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   disks_.clear();
   t_ = t;
   ordered_at_ = collisions_;
+  tally_.clear();
   if (!p.x.empty()) start(p.x, p.v, t);
 }
 
