@@ -46,39 +46,41 @@ std::string scene_problem_key(const CaseConfig& c, const md::ParticleScene& sc) 
                     abbreviated(format_value(c.value(key)), 80) + ": " + why);
 }
 
-// Work and output of the particle run, estimated from the contact the [md] keys ask for
-// (docs/physics.md §5): the step is tc / md.steps_per_contact with tc ~ pi md.max_overlap / u
-// for the fastest relative speed u, about twice the fastest speed of N Maxwellian disks
-// (sqrt(2 T ln N), T the hottest initial temperature) plus the flow. With adaptive stiffness
-// the step grows as u falls with Haff's law, u ~ 1/(1 + t/t0), so steps ~ (t0/dt0) ln(1 +
-// t_end/t0).
+// Work and output of the particle run. The work is the engine's own estimate, in its own unit
+// (md_bridge/particle_work.hpp: LAMMPS atom-steps from the contact, event-driven collisions from
+// Enskog's collision frequency); a sample interval below the engine's time step (LAMMPS only)
+// is refused.
 void check_particle_work(const CaseConfig& c, const MdScene& s, double t_haff) {
   const auto& spec = s.spec;
   const auto& sc = spec.scene;
   const double n = double(sc.particles);
-  const double hottest = std::max(1.0, sampled_maximum(spec.fields.T));
-  const double flow =
+  md::ParticleWorkQuestion question;
+  question.scene = sc;
+  question.settings = s.engine_settings;
+  question.hottest_temperature = std::max(1.0, sampled_maximum(spec.fields.T));
+  question.fastest_flow =
       std::max(0.0, sampled_maximum([&](double x) {
                  return std::abs(spec.fields.v(x));  // x and t both scale with Lx: v is the same
                }));
-  const double u = 2.0 * (std::sqrt(2.0 * hottest * std::log(std::max(n, 2.0))) + flow);
-  const double dt0 = 3.14159265358979323846 * c.real("md.max_overlap") / u /
-                     double(c.int_value("md.steps_per_contact"));
-  const bool adaptive = c.boolean("md.adaptive_stiffness");
-  const double steps = adaptive && std::isfinite(t_haff) && t_haff > 0.0
-                           ? t_haff / dt0 * std::log1p(spec.t_end / t_haff)
-                           : spec.t_end / dt0;
-  refuse_beyond(
-      c, {"md.t_end", "md.ensemble", "md.particles", "md.steps_per_contact", "md.max_overlap"},
-      n * s.ensemble * steps, kMaxAtomSteps, "atom-steps",
-      "the particle run (" + std::to_string(s.ensemble) + " x " + std::to_string(sc.particles) +
-          " disks, first step ~" + format_real(dt0) + ")");
+  question.t_end = spec.t_end;
+  question.haff_time = t_haff;
+  question.ensemble = s.ensemble;
+  md::ParticleWorkEstimate work;
+  try {
+    work = md::estimate_particle_work(s.engine, question);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
+  const double dt0 = work.first_step;
+  refuse_beyond(c, work.keys, work.work, work.limit, work.unit,
+                "the particle run (" + std::to_string(s.ensemble) + " x " +
+                    std::to_string(sc.particles) + " disks" +
+                    (dt0 > 0.0 ? ", first step ~" + format_real(dt0) : std::string()) + ")");
   // A sample interval below the step skips requested times: the run passes a snapshot time
   // within one step without stopping at it (the last one is lost). The step at the end of the
   // run, where adaptive stiffness has made it longest, is the one that counts.
-  const double dt_end =
-      adaptive && std::isfinite(t_haff) && t_haff > 0.0 ? dt0 * (1.0 + spec.t_end / t_haff) : dt0;
-  if (spec.sample_interval < dt_end) {
+  const double dt_end = work.last_step;
+  if (dt0 > 0.0 && spec.sample_interval < dt_end) {
     refuse(c, "md.sample_interval",
            "below the particle time step (about " + format_real(dt0) + " at the start, " +
                format_real(dt_end) +

@@ -16,6 +16,10 @@ std::string number(double x) {
 }  // namespace
 
 std::string key_to_blame(const CaseConfig& c, std::initializer_list<std::string> keys) {
+  return key_to_blame(c, std::vector<std::string>(keys));
+}
+
+std::string key_to_blame(const CaseConfig& c, const std::vector<std::string>& keys) {
   std::string best;
   int best_rank = -1;
   for (const std::string& key : keys) {
@@ -26,6 +30,11 @@ std::string key_to_blame(const CaseConfig& c, std::initializer_list<std::string>
 }
 
 void refuse_beyond(const CaseConfig& c, std::initializer_list<std::string> keys, double estimate,
+                   double limit, const std::string& unit, const std::string& what) {
+  refuse_beyond(c, std::vector<std::string>(keys), estimate, limit, unit, what);
+}
+
+void refuse_beyond(const CaseConfig& c, const std::vector<std::string>& keys, double estimate,
                    double limit, const std::string& unit, const std::string& what) {
   if (std::isfinite(estimate) && estimate <= limit) return;
   const std::string key = key_to_blame(c, keys);

@@ -4,6 +4,7 @@
 // line naming the key, its value and the estimate.
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "app/case_config.hpp"
 
@@ -11,8 +12,7 @@ namespace granvv::app {
 
 // Hydro: 1e12 cell-steps is about two days at the measured 6e6 cell-steps/s (README).
 constexpr double kMaxCellSteps = 1e12;
-// Particles: 1e13 atom-steps is about two days at the measured 6.4e7 atom-steps/s (README).
-constexpr double kMaxAtomSteps = 1e13;
+// Particles: each engine's own limit (md_bridge/particle_work.hpp).
 // Particle runs in segments (one per sample or snapshot), each a LAMMPS `run` with its log
 // header of about 1 kB: 1e7 segments is a 10 GB log.
 constexpr double kMaxSegments = 1e7;
@@ -22,10 +22,13 @@ constexpr double kMaxOutputBytes = 2e10;
 // Of `keys`, the one the user set last: a --set before the case file before a default (the
 // first of equals). The key a refusal names.
 std::string key_to_blame(const CaseConfig& config, std::initializer_list<std::string> keys);
+std::string key_to_blame(const CaseConfig& config, const std::vector<std::string>& keys);
 
 // Throws ConfigError "ORIGIN: KEY = VALUE: <what> (estimate E); the limit is L <unit>" if
 // estimate > limit or is not finite; KEY is key_to_blame(keys).
 void refuse_beyond(const CaseConfig& config, std::initializer_list<std::string> keys,
                    double estimate, double limit, const std::string& unit, const std::string& what);
+void refuse_beyond(const CaseConfig& config, const std::vector<std::string>& keys, double estimate,
+                   double limit, const std::string& unit, const std::string& what);
 
 }  // namespace granvv::app

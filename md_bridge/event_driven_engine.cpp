@@ -125,6 +125,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
 
 void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
+  tally_.clear();
   events_ = collisions_ = crossings_ = changed_ = ordered_at_ = 0;
   ++runs_;
 }
@@ -231,6 +232,7 @@ void EventDrivenEngine::collide(int i, int j, double now) {
         std::clamp(int(std::floor((mid / options_.box_length + 0.5) * options_.virial_bins)), 0,
                    options_.virial_bins - 1);
     virial_sum_[std::size_t(bin)] += k * separation2;
+    tally_.add(id_[std::size_t(i)], id_[std::size_t(j)], k * dx * dx, k * dy * dy);
   }
   ++a.count;
   ++b.count;
@@ -259,6 +261,7 @@ double EventDrivenEngine::advance_to(double t) {
   const double begin = t_;
   segment_collisions_ = 0;
   std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
+  tally_.begin(disks_.size());
   const double n = double(disks_.size());
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
   while (calendar_.next_time() <= t) {
@@ -288,6 +291,7 @@ double EventDrivenEngine::advance_to(double t) {
   }
   t_ = t;
   const double interval = t - begin;
+  tally_.finish(interval);
   virial_.t_begin = begin;
   virial_.t_end = t;
   virial_.box = 0.0;
@@ -354,6 +358,10 @@ void EventDrivenEngine::synchronise() {
 LocalParticles EventDrivenEngine::local_particles() {
   if (rank_ != 0) return {};
   return {x_.data(), v_.data(), mass_.data(), int(disks_.size())};
+}
+
+LocalVirial EventDrivenEngine::local_virial() {
+  return rank_ == 0 ? tally_.last() : LocalVirial{};
 }
 
 ParticleFrame EventDrivenEngine::gather_frame() {
@@ -432,6 +440,7 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   made_ = std::chrono::steady_clock::now();
   disks_.clear();
   t_ = t;
+  tally_.clear();
   if (!p.x.empty()) start(p.x, p.v, t);
 }
 

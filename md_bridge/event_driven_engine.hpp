@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "md_bridge/collision_virial.hpp"
 #include "md_bridge/event_calendar.hpp"
 #include "md_bridge/particle_engine.hpp"
 #include "md_bridge/periodic_cells.hpp"
@@ -68,6 +69,9 @@ class EventDrivenEngine final : public ParticleEngine {
   // coarse-grainer, the others none.
   LocalParticles local_particles() override;
   ParticleFrame gather_frame() override;
+  // Each disk's share of the collision virial over the last interval of advance_to
+  // (collision_virial.hpp), on rank 0; empty before the first advance of a run.
+  LocalVirial local_virial() override;
   // collision_virial_pressure (the box's, CollisionVirial) and collisions_per_particle_time
   // (2 collisions / (N dt)) over the last interval; 0 at the first sample (no interval yet).
   EngineValues series_values() const override;
@@ -146,6 +150,7 @@ class EventDrivenEngine final : public ParticleEngine {
   std::vector<double> virial_sum_;  // sum of sigma J per bin
   long long segment_collisions_ = 0;
   CollisionVirial virial_;
+  CollisionVirialTally tally_;  // the same per disk
   double collision_rate_ = 0.0;
 };
 

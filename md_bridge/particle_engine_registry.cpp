@@ -11,32 +11,48 @@ namespace granvv::md {
 namespace {
 
 using Maker = std::unique_ptr<ParticleEngine> (*)(const ParticleEngineSetup&);
+using WorkEstimator = ParticleWorkEstimate (*)(const ParticleWorkQuestion&);
 
-// One row per engine: its md.engine value and its maker.
-const std::vector<std::pair<std::string, Maker>>& engines() {
-  static const std::vector<std::pair<std::string, Maker>> rows = {
-      {"lammps", &LammpsEngine::make},
-      {"event_driven", &EventDrivenEngine::make},
+// One row per engine: its md.engine value, its maker and its work estimate.
+struct EngineRow {
+  std::string name;
+  Maker make;
+  WorkEstimator work;
+};
+
+const std::vector<EngineRow>& engines() {
+  static const std::vector<EngineRow> rows = {
+      {"lammps", &LammpsEngine::make, &lammps_work},
+      {"event_driven", &EventDrivenEngine::make, &event_driven_work},
   };
   return rows;
+}
+
+const EngineRow& engine_row(const std::string& name) {
+  std::string known;
+  for (const EngineRow& row : engines()) {
+    if (row.name == name) return row;
+    known += (known.empty() ? "" : ", ") + row.name;
+  }
+  throw std::invalid_argument("unknown particle engine \"" + name + "\" (known: " + known + ")");
 }
 
 }  // namespace
 
 std::vector<std::string> particle_engine_names() {
   std::vector<std::string> names;
-  for (const auto& [name, make] : engines()) names.push_back(name);
+  for (const EngineRow& row : engines()) names.push_back(row.name);
   return names;
 }
 
 std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
                                                      const ParticleEngineSetup& setup) {
-  std::string known;
-  for (const auto& [engine, make] : engines()) {
-    if (engine == name) return make(setup);
-    known += (known.empty() ? "" : ", ") + engine;
-  }
-  throw std::invalid_argument("unknown particle engine \"" + name + "\" (known: " + known + ")");
+  return engine_row(name).make(setup);
+}
+
+ParticleWorkEstimate estimate_particle_work(const std::string& name,
+                                            const ParticleWorkQuestion& question) {
+  return engine_row(name).work(question);
 }
 
 }  // namespace granvv::md

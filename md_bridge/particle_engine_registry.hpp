@@ -1,10 +1,12 @@
 #pragma once
-// The particle engines by name: the case key md.engine selects one.
+// The particle engines by name: the case key md.engine selects one, and with it the estimate
+// of a run's work.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "md_bridge/particle_engine.hpp"
+#include "md_bridge/particle_work.hpp"
 
 namespace granvv::md {
 
@@ -15,5 +17,10 @@ std::vector<std::string> particle_engine_names();
 // engine refuses.
 std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
                                                      const ParticleEngineSetup& setup);
+
+// The engine's estimate of a run's work (particle_work.hpp); throws std::invalid_argument for
+// an unknown name.
+ParticleWorkEstimate estimate_particle_work(const std::string& name,
+                                            const ParticleWorkQuestion& question);
 
 }  // namespace granvv::md

@@ -1,0 +1,60 @@
+#include "md_bridge/particle_work.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "md_bridge/hard_disk_theory.hpp"
+
+namespace granvv::md {
+
+namespace {
+
+double required_setting(const EngineSettings& settings, const std::string& key) {
+  const auto found = settings.find(key);
+  if (found == settings.end())
+    throw std::invalid_argument("the work estimate needs the setting " + key);
+  return found->second;
+}
+
+bool cools(double haff_time) {
+  return std::isfinite(haff_time) && haff_time > 0.0;
+}
+
+}  // namespace
+
+ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q) {
+  const double n = double(q.scene.particles);
+  const double u =
+      2.0 * (std::sqrt(2.0 * q.hottest_temperature * std::log(std::max(n, 2.0))) + q.fastest_flow);
+  const double dt0 = 3.14159265358979323846 * required_setting(q.settings, "md.max_overlap") / u /
+                     double(std::lround(required_setting(q.settings, "md.steps_per_contact")));
+  const bool adaptive = required_setting(q.settings, "md.adaptive_stiffness") != 0.0;
+  const bool haff = adaptive && cools(q.haff_time);
+  const double steps = haff ? q.haff_time / dt0 * std::log1p(q.t_end / q.haff_time) : q.t_end / dt0;
+  ParticleWorkEstimate w;
+  w.work = n * q.ensemble * steps;
+  w.limit = kMaxAtomSteps;
+  w.unit = "atom-steps";
+  w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.steps_per_contact", "md.max_overlap"};
+  w.first_step = dt0;
+  // The step at the end of the run, where adaptive stiffness has made it longest.
+  w.last_step = haff ? dt0 * (1.0 + q.t_end / q.haff_time) : dt0;
+  return w;
+}
+
+ParticleWorkEstimate event_driven_work(const ParticleWorkQuestion& q) {
+  const double n = double(q.scene.particles);
+  const double nu0 = enskog_collision_frequency(q.scene.number_density(), q.scene.area_fraction,
+                                                q.hottest_temperature);
+  const double clock =
+      cools(q.haff_time) ? q.haff_time * std::log1p(q.t_end / q.haff_time) : q.t_end;
+  ParticleWorkEstimate w;
+  w.work = q.ensemble * 0.5 * n * nu0 * clock;
+  w.limit = kMaxCollisions;
+  w.unit = "collisions";
+  w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.area_fraction"};
+  return w;
+}
+
+}  // namespace granvv::md

@@ -1,0 +1,56 @@
+#pragma once
+// The work of a particle run, estimated before anything runs, in each engine's own unit and
+// against the most that unit can do here (app/md_scene.cpp refuses a run beyond it, naming the
+// key). The registry picks an engine's estimate by md.engine (particle_engine_registry.hpp).
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "md_bridge/particle_engine.hpp"
+#include "md_bridge/particle_scene.hpp"
+
+namespace granvv::md {
+
+// LAMMPS: 1e13 atom-steps is about two days at the measured 6.4e7 atom-steps/s (README).
+inline constexpr double kMaxAtomSteps = 1e13;
+// Event-driven: 3e10 collisions is about two days at the measured 2e5 collisions per CPU second
+// of 10^4 disks on this machine (docs/md_benchmarks.md §4).
+inline constexpr double kMaxCollisions = 3e10;
+
+struct ParticleWorkQuestion {
+  ParticleScene scene;
+  EngineSettings settings;           // the md.* keys, as the engine gets them
+  double hottest_temperature = 1.0;  // the initial fields' largest T (at least T0 = 1)
+  double fastest_flow = 0.0;         // the initial fields' largest |v|
+  double t_end = 0.0;                // MD time
+  // Kinetic-theory Haff time with chi(phi) (haff_time_md); infinite or 0 for a gas that does
+  // not cool.
+  double haff_time = std::numeric_limits<double>::infinity();
+  int ensemble = 1;
+};
+
+struct ParticleWorkEstimate {
+  double work = 0.0;   // in `unit`, over the whole ensemble
+  double limit = 0.0;  // the most of it a run may ask for here
+  std::string unit;    // "atom-steps", "collisions"
+  // The keys the work grows with; a refusal names the one the user set last.
+  std::vector<std::string> keys;
+  // The engine's time step at t = 0 and at md.t_end (MD time; 0 for an engine without one): a
+  // sample interval below it cannot be kept.
+  double first_step = 0.0, last_step = 0.0;
+};
+
+// LAMMPS (docs/physics.md §5): the step is tc / md.steps_per_contact with tc ~ pi md.max_overlap
+// / u for the fastest relative speed u, about twice the fastest speed of N Maxwellian disks
+// (sqrt(2 T ln N), T the hottest initial temperature) plus the flow. With adaptive stiffness the
+// step grows as u falls with Haff's law, u ~ 1/(1 + t/t0), so steps ~ (t0/dt0) ln(1 +
+// t_end/t0). Work: particles x steps.
+ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q);
+
+// Event-driven (docs/physics.md §10): Enskog's collision frequency nu0 = 2 sqrt(pi) n0 chi(phi)
+// sqrt(T) at the hottest initial temperature, falling as sqrt(T) ~ 1/(1 + t/t0) with Haff's
+// law: collisions = (N/2) nu0 t0 ln(1 + t_end/t0) (N nu0 t_end / 2 without cooling). Clusters
+// collide faster than the mean density says; the limit leaves room for it.
+ParticleWorkEstimate event_driven_work(const ParticleWorkQuestion& q);
+
+}  // namespace granvv::md
