@@ -511,6 +511,13 @@ int atlas_command(const AtlasOptions& options) {
     const AtlasRun pilot = runner.run_one(particle_pilot(scene, model));
     runs.push_back(pilot);
     if (interruption_signal()) return interrupted();
+    if (pilot.status == "refused") {  // the scene is not one this engine takes: no grid
+      skipped.push_back(
+          {{"setting", setting_json(pilot.setting)},
+           {"reason", "the pilot was refused, so is every setting: " + pilot.reason}});
+      budget.done();
+      continue;
+    }
     double planned_seconds = pilot.cost.wall_seconds;
     std::vector<AtlasSetting> grid_settings =
         is_lammps(model) ? lammps_grid(scene, grid.max_overlaps, grid.steps_per_contacts)
