@@ -8,19 +8,20 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <limits>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
 
 #include "app/atlas_analysis.hpp"
+#include "app/atlas_particles.hpp"
 #include "app/atlas_runs.hpp"
 #include "app/atomic_file.hpp"
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
 #include "app/interruption.hpp"
 #include "app/json_numbers.hpp"
+#include "app/md_scene.hpp"
 #include "app/model.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
@@ -30,6 +31,7 @@
 #include "atlas/work_precision.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/closure.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -37,7 +39,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using atlas::kNoValue;
 // The default grid around the case's own setting (docs/atlas.md): cells times these, and these
 // factors on the step bounds. The finest corner is each hydro's converged reference.
 const std::vector<double> kCellFactors = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0};
@@ -48,17 +50,17 @@ constexpr int kPushes = 6, kRefinements = 2;
 // A run is over-resolved when its numerical error is below this fraction of its model error:
 // refining it further cannot bring it closer to the richest model.
 constexpr double kOverResolved = 0.1;
-// The ladder from the poorest model to the richest; a scene runs the ones that apply.
-const std::vector<std::string> kLadder = {"haff_ode", "flow_by_inertia", "hydro/dilute",
-                                          "hydro/enskog"};
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-bool is_hydro(const std::string& model) {
-  return model.rfind("hydro/", 0) == 0;
-}
+// The particles' default grid (docs/atlas.md): the event-driven engine at these ensemble sizes,
+// LAMMPS at md.max_overlap and md.steps_per_contact times these (the schema refuses what lies
+// beyond its ranges, and the map shows those as refused).
+const std::vector<int> kEnsembles = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
+const std::vector<double> kOverlapFactors = {0.5, 1.0, 2.0, 5.0, 10.0};
+const std::vector<double> kContactStepFactors = {1.0 / 3.0, 0.5, 1.0, 2.0};
+// The ladder from the poorest model to the richest; a scene runs the ones that apply. The
+// event-driven hard disks are the paper's own model, and the richest.
+const std::vector<std::string> kLadder = {"haff_ode",         "flow_by_inertia",
+                                          "hydro/dilute",     "hydro/enskog",
+                                          "particles/lammps", "particles/event_driven"};
 
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> items;
@@ -76,7 +78,7 @@ std::vector<std::string> split_list(const std::string& s) {
 
 // atlas.observables, expanded: "scene" by the scene's type, "crossing_times" into one name per
 // crossing level below the stop density.
-std::vector<std::string> judged_observables(const CaseConfig& c, bool homogeneous,
+std::vector<std::string> judged_observables(const CaseConfig& c, bool homogeneous, bool particles,
                                             const std::vector<double>& levels) {
   const std::string text = c.string("atlas.observables");
   std::vector<std::string> asked = split_list(text);
@@ -86,7 +88,11 @@ std::vector<std::string> judged_observables(const CaseConfig& c, bool homogeneou
                       join(atlas_observable_names(), ", "));
   }
   if (asked == std::vector<std::string>{"scene"}) {
-    asked = homogeneous ? std::vector<std::string>{"thermal_energy"} : atlas_observable_names();
+    asked = !homogeneous
+                ? std::vector<std::string>{"crossing_times", "thermal_energy", "kinetic_energy",
+                                           "field_n",        "field_v_x",      "field_T"}
+            : particles ? std::vector<std::string>{"thermal_energy", "haff_t0"}
+                        : std::vector<std::string>{"thermal_energy"};
   }
   std::vector<std::string> names;
   for (const auto& a : asked) {
@@ -122,30 +128,53 @@ std::vector<LadderRung> ladder_of(const AtlasScene& scene) {
     if (model == "hydro/enskog" && !(scene.area_fraction > 0.0)) {
       r.skipped = "needs physics.area_fraction > 0 (the area fraction of the disks)";
     }
+    if (is_particles(model)) {
+      const auto engines = md::particle_engine_names();
+      if (!scene.particles) {
+        r.skipped = "md.enabled = false";
+      } else if (std::find(engines.begin(), engines.end(), model.substr(10)) == engines.end()) {
+        r.skipped = "this build has no particle engine \"" + model.substr(10) + "\"";
+      }
+    }
     rungs.push_back(r);
   }
-  rungs.push_back({"particles/lammps", scene.particles
-                                           ? "particle rungs are not in this version of the atlas"
-                                           : "md.enabled = false"});
   return rungs;
 }
 
 struct Grid {
   std::vector<int> cells;
   std::vector<double> factors;
+  std::vector<int> ensembles;  // the event-driven engine's
+  std::vector<double> max_overlaps;
+  std::vector<int> steps_per_contacts;
 };
 
-Grid grid_of(const CaseConfig& c, int case_cells) {
+Grid grid_of(const CaseConfig& c, const AtlasScene& scene) {
   Grid g;
   for (long long n : c.integers("atlas.cells")) g.cells.push_back(int(n));
   g.factors = c.reals("atlas.step_factors");
   if (g.cells.empty()) {
     for (double f : kCellFactors) {
-      const int n = std::max(4, int(std::lround(case_cells * f)));
+      const int n = std::max(4, int(std::lround(scene.case_cells * f)));
       if (g.cells.empty() || n > g.cells.back()) g.cells.push_back(n);
     }
   }
   if (g.factors.empty()) g.factors = kStepFactors;
+  for (long long m : c.integers("atlas.ensembles")) g.ensembles.push_back(int(m));
+  if (g.ensembles.empty()) g.ensembles = kEnsembles;
+  g.max_overlaps = c.reals("atlas.max_overlaps");
+  if (g.max_overlaps.empty()) {
+    for (double f : kOverlapFactors) g.max_overlaps.push_back(scene.case_max_overlap * f);
+  }
+  for (long long k : c.integers("atlas.steps_per_contacts")) g.steps_per_contacts.push_back(int(k));
+  if (g.steps_per_contacts.empty()) {
+    for (double f : kContactStepFactors) {
+      const int k = int(std::lround(scene.case_steps_per_contact * f));
+      if (g.steps_per_contacts.empty() || k > g.steps_per_contacts.back()) {
+        g.steps_per_contacts.push_back(k);
+      }
+    }
+  }
   return g;
 }
 
@@ -160,6 +189,12 @@ double estimate(const AtlasSetting& s, const AtlasRun& pilot, int case_cells) {
 json setting_json(const AtlasSetting& s) {
   json j = {{"model", s.model}};
   if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
+  if (is_particles(s.model)) j["ensemble"] = s.ensemble;
+  if (is_lammps(s.model)) {
+    j["max_overlap"] = s.max_overlap;
+    j["steps_per_contact"] = s.steps_per_contact;
+    j["adaptive_stiffness"] = s.adaptive_stiffness;
+  }
   return j;
 }
 
@@ -172,7 +207,7 @@ json errors_json(const std::map<std::string, double>& e) {
 double largest(const std::map<std::string, double>& e) {
   double m = 0.0;
   for (const auto& [k, v] : e) m = std::max(m, v);
-  return e.empty() ? kNaN : m;
+  return e.empty() ? kNoValue : m;
 }
 
 // Runs the settings with up to `jobs` at a time, each taken from the cache when it is there,
@@ -206,6 +241,14 @@ class AtlasRunner {
         }
       }
     };
+    // Particle runs call MPI (single-threaded) and are one engine each: on this thread, in turn.
+    const bool serial =
+        jobs_ == 1 || std::any_of(settings.begin(), settings.end(),
+                                  [](const AtlasSetting& s) { return is_particles(s.model); });
+    if (serial) {
+      work();
+      return runs;
+    }
     std::vector<std::thread> pool;
     for (int j = 0; j < std::min<int>(jobs_, int(settings.size())); ++j) pool.emplace_back(work);
     for (auto& t : pool) t.join();
@@ -227,38 +270,76 @@ class AtlasRunner {
 };
 
 void write_atlas_h5(const fs::path& file, const std::vector<AtlasRun>& runs,
-                    const std::vector<std::map<std::string, double>>& numerical,
-                    const std::vector<std::map<std::string, double>>& model,
+                    const std::vector<ObservableErrors>& numerical,
+                    const std::vector<ObservableErrors>& model,
                     const std::vector<std::string>& observables) {
   const fs::path tmp = file.string() + ".partial";
   {
     H5::H5File f(tmp.string(), H5F_ACC_TRUNC);
     H5::Group g = f.createGroup("runs");
     std::vector<std::string> names, status;
-    std::vector<double> cells, factor, wall, work;
+    std::vector<double> cells, factor, ensemble, overlap, spc, adaptive, wall, work;
     for (const auto& r : runs) {
       names.push_back(r.setting.model), status.push_back(r.status);
       cells.push_back(r.setting.cells), factor.push_back(r.setting.step_factor);
+      ensemble.push_back(r.setting.ensemble), overlap.push_back(r.setting.max_overlap);
+      spc.push_back(r.setting.steps_per_contact), adaptive.push_back(r.setting.adaptive_stiffness);
       wall.push_back(r.cost.wall_seconds), work.push_back(r.cost.work);
     }
     h5::write_strings(g, "model", names);
     h5::write_strings(g, "status", status);
     h5::write_vector(g, "cells", cells);
     h5::write_vector(g, "step_factor", factor);
+    h5::write_vector(g, "ensemble", ensemble);
+    h5::write_vector(g, "max_overlap", overlap);
+    h5::write_vector(g, "steps_per_contact", spc);
+    h5::write_vector(g, "adaptive_stiffness", adaptive);
     h5::write_vector(g, "wall_seconds", wall);
     h5::write_vector(g, "work", work);
-    h5::write_attribute(g, "missing", "NaN: the run does not give the observable");
-    for (const auto& [group_name, errors] :
-         {std::pair{"numerical_error", &numerical}, std::pair{"model_error", &model}}) {
-      H5::Group e = g.createGroup(group_name);
-      for (const auto& name : observables) {
+    h5::write_attribute(g, "missing", "NaN: the run does not give the observable; 0: no such knob");
+    auto group = [&](const char* name, const std::vector<ObservableErrors>& errors,
+                     bool reference_error) {
+      H5::Group e = g.createGroup(name);
+      for (const auto& o : observables) {
         std::vector<double> v;
-        for (const auto& m : *errors) v.push_back(m.count(name) ? m.at(name) : kNaN);
-        h5::write_vector(e, name, v);
+        for (const auto& m : errors) {
+          const auto it = m.find(o);
+          v.push_back(it == m.end()     ? kNoValue
+                      : reference_error ? it->second.reference_error
+                                        : it->second.error);
+        }
+        h5::write_vector(e, o, v);
       }
-    }
+    };
+    group("numerical_error", numerical, false);
+    group("model_error", model, false);
+    group("reference_statistical_error", model, true);
   }
   fs::rename(tmp, file);
+}
+
+// How much of --budget a family of rungs may plan: the budget left over the families left to
+// plan, so that what one family leaves passes to the next (docs/atlas.md).
+class BudgetShares {
+ public:
+  BudgetShares(double budget, int families) : budget_(budget), left_(std::max(1, families)) {}
+  // The share of the next family; its use is then charged with spend and closed with done.
+  double share() const { return std::max(0.0, budget_ - used_) / left_; }
+  void spend(double seconds) { used_ += seconds; }
+  void done() { left_ = std::max(1, left_ - 1); }
+
+ private:
+  double budget_;
+  int left_;
+  double used_ = 0.0;
+};
+
+json skipped_for_budget(const AtlasSetting& s, double estimate, double share, double budget) {
+  return {{"setting", setting_json(s)},
+          {"estimate_seconds", estimate},
+          {"reason", "its estimated " + format_real(estimate) + " s would pass the share of " +
+                         s.model + " in the budget (" + format_real(share) + " s of --budget " +
+                         format_real(budget) + ")"}};
 }
 
 }  // namespace
@@ -298,17 +379,43 @@ int atlas_command(const AtlasOptions& options) {
     scene.case_dt_max = hydro.control.time_step.dt_max;
     scene.case_max_compression = hydro.control.time_step.max_compression;
     scene.area_fraction = hydro.area_fraction;
+    scene.sigmas = config.real("compare.sigmas");
+    if (scene.particles) {
+      // Every model is compared on the particles' bins: their ensemble mean has its error there.
+      const int md_bins = config.int_value("md.bins");
+      if (config.origin("atlas.bins") != "default" && scene.bins != md_bins) {
+        throw ConfigError(config.origin("atlas.bins") +
+                          ": atlas.bins = " + std::to_string(scene.bins) +
+                          ": a particle scene is compared on md.bins = " + std::to_string(md_bins) +
+                          "; leave atlas.bins unset or equal to it");
+      }
+      scene.bins = md_bins;
+      const std::optional<MdScene> md = md_scene_from(config, hydro);
+      scene.case_ensemble = md->ensemble;
+      scene.case_max_overlap = config.real("md.max_overlap");
+      scene.case_steps_per_contact = config.int_value("md.steps_per_contact");
+      scene.case_adaptive_stiffness = config.boolean("md.adaptive_stiffness");
+      scene.particle_count = md->spec.scene.particles;
+      scene.md_t_end = md->spec.t_end;
+      scene.md_t_haff =
+          md::haff_time_md(md->spec.scene, md::enskog_chi(md->spec.scene.area_fraction));
+      scene.t0_theory = md->spec.scene.scaled_time(scene.md_t_haff);
+    }
     initial_type = hydro.initial.type;
     scene.has_inertia_reference = hydro::inertia_reference(hydro.initial).has_value();
     stop_density = hydro.control.stop_density;
     for (double level : hydro.control.crossing_densities) {
       if (level < stop_density && initial_type != "uniform") scene.crossing_levels.push_back(level);
     }
-    observables = judged_observables(config, initial_type == "uniform", scene.crossing_levels);
-    grid = grid_of(config, scene.case_cells);
+    observables = judged_observables(config, initial_type == "uniform", scene.particles,
+                                     scene.crossing_levels);
+    grid = grid_of(config, scene);
     ladder = ladder_of(scene);
     // The compared times: the hydro's own output times, or those of a particle scene.
-    AtlasSetting probe{"hydro/" + hydro.closure, scene.case_cells, 1.0};
+    AtlasSetting probe;
+    probe.model = "hydro/" + hydro.closure;
+    probe.cells = scene.case_cells;
+    probe.step_factor = 1.0;
     const CaseConfig first = CaseConfig::from_string(scene.source.text, scene.source.origin,
                                                      setting_overrides(scene, probe));
     const HydroScene aligned = atlas_hydro_scene(first, scene);
@@ -332,26 +439,36 @@ int atlas_command(const AtlasOptions& options) {
   const int jobs =
       options.jobs > 0 ? options.jobs : std::max(1, int(std::thread::hardware_concurrency()));
   AtlasRunner runner(scene, dir / "runs", jobs, options.quiet);
+  auto interrupted = [&] {
+    std::cerr << "granvv: atlas interrupted; the " << runner.made() << " runs made are cached in "
+              << (dir / "runs").string() << ", and a re-run of the same atlas keeps them\n";
+    return interrupted_exit_code();
+  };
 
   // 2. The exact solutions, and the pilot: each hydro at the case's own setting.
   std::vector<AtlasRun> runs;
-  std::vector<std::string> hydro_models;
+  std::vector<std::string> hydro_models, particle_models;
   json skipped = json::array();
   for (const auto& rung : ladder) {
     if (!rung.skipped.empty()) continue;
     if (is_hydro(rung.model)) {
       hydro_models.push_back(rung.model);
+    } else if (is_particles(rung.model)) {
+      particle_models.insert(particle_models.begin(), rung.model);  // the hard disks first
     } else {
-      runs.push_back(runner.run_one({rung.model, 0, 0.0}));
+      AtlasSetting s;
+      s.model = rung.model;
+      runs.push_back(runner.run_one(s));
     }
   }
+  BudgetShares budget(options.budget, int(hydro_models.size() + particle_models.size()));
   std::vector<AtlasSetting> planned;
   std::vector<double> estimates;
-  double planned_seconds = 0.0;
   for (const auto& model : hydro_models) {
+    const double share = budget.share();
     const AtlasRun pilot = runner.run_one({model, scene.case_cells, 1.0});
     runs.push_back(pilot);
-    planned_seconds += pilot.cost.wall_seconds;
+    double planned_seconds = pilot.cost.wall_seconds;
     // 3. The grid within the budget: the finest corner (the reference) first, then the cheapest.
     std::vector<AtlasSetting> grid_settings;
     for (int c : grid.cells) {
@@ -371,56 +488,103 @@ int atlas_command(const AtlasOptions& options) {
         });
     for (const auto& s : grid_settings) {
       const double e = estimate(s, pilot, scene.case_cells);
-      if ((planned_seconds + e) / jobs > options.budget / hydro_models.size()) {
-        skipped.push_back(
-            {{"setting", setting_json(s)},
-             {"estimate_seconds", e},
-             {"reason", "its estimated " + format_real(e) + " s would pass the budget (--budget " +
-                            format_real(options.budget) + ")"}});
+      if ((planned_seconds + e) / jobs > share) {
+        skipped.push_back(skipped_for_budget(s, e, share, options.budget));
         continue;
       }
       planned_seconds += e;
       planned.push_back(s);
       estimates.push_back(e);
     }
+    budget.spend(planned_seconds / jobs);
+    budget.done();
   }
   {
     auto more = runner.run(planned, estimates);
     runs.insert(runs.end(), more.begin(), more.end());
   }
-  if (interruption_signal()) {
-    std::cerr << "granvv: atlas interrupted; the " << runner.made() << " runs made are cached in "
-              << (dir / "runs").string() << ", and a re-run of the same atlas keeps them\n";
-    return interrupted_exit_code();
+  if (interruption_signal()) return interrupted();
+  // The particles, one engine at a time: each engine's pilot (the case's own setting at one
+  // ensemble member), then its grid from the case's own setting upward in cost, within its share.
+  for (const auto& model : particle_models) {
+    const double share = budget.share();
+    const AtlasRun pilot = runner.run_one(particle_pilot(scene, model));
+    runs.push_back(pilot);
+    if (interruption_signal()) return interrupted();
+    if (pilot.status == "refused") {  // the scene is not one this engine takes: no grid
+      skipped.push_back(
+          {{"setting", setting_json(pilot.setting)},
+           {"reason", "the pilot was refused, so is every setting: " + pilot.reason}});
+      budget.done();
+      continue;
+    }
+    double planned_seconds = pilot.cost.wall_seconds;
+    std::vector<AtlasSetting> grid_settings =
+        is_lammps(model) ? lammps_grid(scene, grid.max_overlaps, grid.steps_per_contacts)
+                         : event_driven_grid(grid.ensembles);
+    auto own = [&](const AtlasSetting& s) {
+      return is_lammps(model) && s.max_overlap == scene.case_max_overlap &&
+             s.steps_per_contact == scene.case_steps_per_contact &&
+             s.adaptive_stiffness == scene.case_adaptive_stiffness;
+    };
+    std::stable_sort(grid_settings.begin(), grid_settings.end(),
+                     [&](const AtlasSetting& a, const AtlasSetting& b) {
+                       if (own(a) != own(b)) return own(a);
+                       return particle_estimate(a, pilot, scene) <
+                              particle_estimate(b, pilot, scene);
+                     });
+    std::vector<AtlasSetting> particle_plan;
+    std::vector<double> particle_estimates;
+    for (const auto& s : grid_settings) {
+      if (describe(s) == describe(pilot.setting)) continue;
+      const double e = particle_estimate(s, pilot, scene);
+      if (planned_seconds + e > share) {
+        skipped.push_back(skipped_for_budget(s, e, share, options.budget));
+        continue;
+      }
+      planned_seconds += e;
+      particle_plan.push_back(s);
+      particle_estimates.push_back(e);
+    }
+    budget.spend(planned_seconds);
+    budget.done();
+    auto more = runner.run(particle_plan, particle_estimates);
+    runs.insert(runs.end(), more.begin(), more.end());
+    if (interruption_signal()) return interrupted();
   }
 
-  // 4. References: each hydro's finest run that finished; the richest model's is the reference
+  // 4. References: each model's finest run that finished; the richest model's is the reference
   // of the model errors.
   auto finest_of = [&](const std::string& model) -> const AtlasRun* {
     const AtlasRun* best = nullptr;
     for (const auto& r : runs) {
       if (r.setting.model != model || r.status != "ok") continue;
-      if (!best || r.setting.cells > best->setting.cells ||
-          (r.setting.cells == best->setting.cells &&
-           r.setting.step_factor < best->setting.step_factor)) {
-        best = &r;
-      }
+      const bool finer =
+          !best || (is_particles(model) ? finer_particle_run(r.setting, best->setting)
+                                        : (r.setting.cells > best->setting.cells ||
+                                           (r.setting.cells == best->setting.cells &&
+                                            r.setting.step_factor < best->setting.step_factor)));
+      if (finer) best = &r;
     }
     return best;
   };
   std::map<std::string, const AtlasRun*> own_reference;
   std::string richest;
-  for (const auto& model : hydro_models) {
-    if (const AtlasRun* f = finest_of(model)) own_reference[model] = f, richest = model;
+  for (const auto& rung : ladder) {
+    if (!is_hydro(rung.model) && !is_particles(rung.model)) continue;
+    if (const AtlasRun* f = finest_of(rung.model))
+      own_reference[rung.model] = f, richest = rung.model;
   }
   if (richest.empty()) {
-    std::cerr << "granvv: error: atlas: no hydro run finished, so there is no reference to "
-                 "measure errors against\n";
+    std::cerr << "granvv: error: atlas: no hydro or particle run finished, so there is no "
+                 "reference to measure errors against\n";
     return 1;
   }
   const AtlasRun& reference = *own_reference[richest];
-  // What the reference itself does not give (a density level the peak never reached) cannot be
-  // judged: it is dropped from the observables, and atlas.json says so.
+  const bool particle_reference = is_particles(richest);
+  // What the reference itself does not give (a density level the peak never reached, the
+  // crossing times the particles do not report) cannot be judged: it is dropped from the
+  // observables, and atlas.json says so.
   json not_judged = json::array();
   {
     const std::vector<std::string> given = provided_observables(reference, observables);
@@ -429,24 +593,30 @@ int atlas_command(const AtlasOptions& options) {
     }
     observables = given;
   }
-  // The reference's own convergence: its neighbours one step coarser in cells and in step.
+  // The reference's own error: a hydro's from its neighbours one step coarser in cells and in
+  // step; the particles' is their ensemble standard error (the hard disks have no other knob).
+  const std::map<std::string, double> statistical = statistical_errors(reference, observables);
   std::map<std::string, double> convergence;
-  for (const auto& r : runs) {
-    if (r.setting.model != richest || r.status != "ok" || &r == &reference) continue;
-    const bool coarser_cells = r.setting.step_factor == reference.setting.step_factor &&
-                               r.setting.cells < reference.setting.cells &&
-                               2 * r.setting.cells >= reference.setting.cells;
-    const bool coarser_step = r.setting.cells == reference.setting.cells &&
-                              r.setting.step_factor > reference.setting.step_factor &&
-                              r.setting.step_factor <= 2 * reference.setting.step_factor;
-    if (!coarser_cells && !coarser_step) continue;
-    for (const auto& [k, v] : observable_errors(r, reference, observables)) {
-      convergence[k] = std::max(convergence.count(k) ? convergence[k] : 0.0, v);
+  if (particle_reference) {
+    convergence = statistical;
+  } else {
+    for (const auto& r : runs) {
+      if (r.setting.model != richest || r.status != "ok" || &r == &reference) continue;
+      const bool coarser_cells = r.setting.step_factor == reference.setting.step_factor &&
+                                 r.setting.cells < reference.setting.cells &&
+                                 2 * r.setting.cells >= reference.setting.cells;
+      const bool coarser_step = r.setting.cells == reference.setting.cells &&
+                                r.setting.step_factor > reference.setting.step_factor &&
+                                r.setting.step_factor <= 2 * reference.setting.step_factor;
+      if (!coarser_cells && !coarser_step) continue;
+      for (const auto& [k, v] : observable_errors(r, reference, observables)) {
+        convergence[k] = std::max(convergence.count(k) ? convergence[k] : 0.0, v.error);
+      }
     }
   }
 
   // 5. Errors, fronts, recommendation.
-  std::vector<std::map<std::string, double>> numerical(runs.size()), model_error(runs.size());
+  std::vector<ObservableErrors> numerical(runs.size()), model_error(runs.size());
   std::vector<atlas::Candidate> candidates;
   std::vector<std::size_t> candidate_run;
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -455,21 +625,33 @@ int atlas_command(const AtlasOptions& options) {
     if (own_reference.count(r.setting.model)) {
       numerical[i] = observable_errors(r, *own_reference[r.setting.model], observables);
     }
-    model_error[i] = &r == &reference ? convergence : observable_errors(r, reference, observables);
-    candidates.push_back({r.cost.wall_seconds, model_error[i]});
+    if (&r == &reference) {
+      for (const auto& [k, v] : convergence) {
+        model_error[i][k] = {v, statistical.count(k) ? statistical.at(k) : kNoValue};
+      }
+    } else {
+      model_error[i] = observable_errors(r, reference, observables);
+    }
+    candidates.push_back(
+        {r.cost.wall_seconds, errors_of(model_error[i]), reference_errors_of(model_error[i])});
     candidate_run.push_back(i);
   }
+  const std::optional<std::size_t> best =
+      atlas::cheapest_adequate(candidates, observables, options.tolerance, scene.sigmas);
   json recommendation;
-  if (const auto best = atlas::cheapest_adequate(candidates, observables, options.tolerance)) {
+  if (best) {
     const AtlasRun& r = runs[candidate_run[*best]];
     recommendation = {{"tolerance", options.tolerance},
+                      {"sigmas", scene.sigmas},
                       {"model", r.setting.model},
                       {"setting", setting_json(r.setting)},
                       {"cost",
                        {{"wall_seconds", r.cost.wall_seconds},
                         {"work", r.cost.work},
                         {"work_unit", r.cost.work_unit}}},
-                      {"error", errors_json(model_error[candidate_run[*best]])}};
+                      {"error", errors_json(errors_of(model_error[candidate_run[*best]]))},
+                      {"reference_statistical_error",
+                       errors_json(reference_errors_of(model_error[candidate_run[*best]]))}};
     // The next rung up: the cheapest adequate run of a richer model, else the cheapest of the
     // next richer model that ran.
     const auto rank = [](const std::string& m) {
@@ -481,7 +663,10 @@ int atlas_command(const AtlasOptions& options) {
       for (std::size_t k = 0; k < candidates.size(); ++k) {
         const AtlasRun& c = runs[candidate_run[k]];
         if (rank(c.setting.model) <= rank(r.setting.model)) continue;
-        if (pass == 0 && !atlas::adequate(candidates[k], observables, options.tolerance)) continue;
+        if (pass == 0 &&
+            !atlas::adequate(candidates[k], observables, options.tolerance, scene.sigmas)) {
+          continue;
+        }
         if (!pick || c.cost.wall_seconds < pick->cost.wall_seconds) pick = &c;
       }
       if (pick) {
@@ -494,6 +679,7 @@ int atlas_command(const AtlasOptions& options) {
     recommendation["next_rung"] = next;
   } else {
     recommendation = {{"tolerance", options.tolerance},
+                      {"sigmas", scene.sigmas},
                       {"model", nullptr},
                       {"reason", "no run meets the tolerance on every observable"}};
   }
@@ -501,24 +687,46 @@ int atlas_command(const AtlasOptions& options) {
   for (const auto& name : observables) {
     std::vector<double> cost, error;
     for (std::size_t i = 0; i < runs.size(); ++i) {
-      cost.push_back(runs[i].status == "ok" ? runs[i].cost.wall_seconds : kNaN);
-      error.push_back(model_error[i].count(name) ? model_error[i][name] : kNaN);
+      const auto it = model_error[i].find(name);
+      cost.push_back(runs[i].status == "ok" ? runs[i].cost.wall_seconds : kNoValue);
+      error.push_back(it == model_error[i].end() ? kNoValue : it->second.error);
     }
     fronts[name] = atlas::pareto_front(cost, error);
   }
 
-  // 6. Stability boundaries of each hydro around the case's own setting.
+  // 6. Stability boundaries of each hydro around the case's own setting. A run's state against
+  // its own finest run is worked out once: from its numerical error for a grid run, on arrival
+  // for a probe.
   json stability = json::array();
   for (const auto& model : hydro_models) {
     if (!own_reference.count(model)) continue;
     const AtlasRun& ref = *own_reference[model];
-    auto classify = [&](const AtlasRun& r) -> std::string {
+    auto classify = [&](const AtlasRun& r, const ObservableErrors& errors) -> std::string {
       if (r.status != "ok") return r.status;
-      const double e = largest(observable_errors(r, ref, observables));
-      return e > options.tolerance ? "error_above_tolerance" : "";
+      return largest(errors_of(errors)) > options.tolerance ? "error_above_tolerance" : "";
+    };
+    std::map<std::pair<int, double>, std::string> state;  // (cells, step factor) -> failure
+    std::vector<const AtlasRun*> drawn_runs;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (runs[i].setting.model != model) continue;
+      if (state
+              .emplace(std::pair{runs[i].setting.cells, runs[i].setting.step_factor},
+                       classify(runs[i], numerical[i]))
+              .second) {
+        drawn_runs.push_back(&runs[i]);
+      }
+    }
+    std::vector<AtlasRun> probed;  // the boundary searches' runs, drawn on the map too
+    probed.reserve(2 * (kPushes + kRefinements + 1));
+    auto state_of = [&](const AtlasSetting& s) {
+      const std::pair key{s.cells, s.step_factor};
+      if (const auto it = state.find(key); it != state.end()) return it->second;
+      probed.push_back(runner.run_one(s));
+      drawn_runs.push_back(&probed.back());
+      return state[key] =
+                 classify(probed.back(), observable_errors(probed.back(), ref, observables));
     };
     json boundaries = json::array();
-    std::vector<AtlasRun> probed;  // the boundary searches' runs, drawn on the map too
     struct Push {
       const char* knob;
       double factor;
@@ -526,14 +734,12 @@ int atlas_command(const AtlasOptions& options) {
     for (const Push push : {Push{"step_factor", 2.0}, Push{"cells", 0.5}}) {
       const bool cells = std::string(push.knob) == "cells";
       auto probe = [&](double knob) {
-        AtlasSetting s{model, cells ? int(std::lround(knob)) : scene.case_cells,
-                       cells ? 1.0 : knob};
         if (interruption_signal()) return std::string("interrupted");
-        probed.push_back(runner.run_one(s));
-        return classify(probed.back());
+        return state_of(
+            {model, cells ? int(std::lround(knob)) : scene.case_cells, cells ? 1.0 : knob});
       };
       const double start_knob = cells ? scene.case_cells : 1.0;
-      if (!classify(runner.run_one({model, scene.case_cells, 1.0})).empty()) {
+      if (!state_of({model, scene.case_cells, 1.0}).empty()) {
         boundaries.push_back({{"knob", push.knob},
                               {"note",
                                "the case's own setting already fails against the "
@@ -550,51 +756,60 @@ int atlas_command(const AtlasOptions& options) {
                             {"probes", b.probes}});
     }
     json grid_points = json::array();
-    std::set<std::pair<int, double>> drawn;
-    for (const auto* list : {&runs, &probed}) {
-      for (const auto& r : *list) {
-        if (r.setting.model != model ||
-            !drawn.insert({r.setting.cells, r.setting.step_factor}).second) {
-          continue;
-        }
-        const std::string c = classify(r);
-        grid_points.push_back({{"cells", r.setting.cells},
-                               {"step_factor", r.setting.step_factor},
-                               {"state", c.empty() ? "ok" : c}});
-      }
+    for (const AtlasRun* r : drawn_runs) {
+      const std::string& c = state.at({r->setting.cells, r->setting.step_factor});
+      grid_points.push_back({{"cells", r->setting.cells},
+                             {"step_factor", r->setting.step_factor},
+                             {"state", c.empty() ? "ok" : c}});
     }
     stability.push_back({{"model", model},
                          {"default", {{"cells", scene.case_cells}, {"step_factor", 1.0}}},
                          {"grid", grid_points},
                          {"boundaries", boundaries}});
   }
+  // The DEM's stability and bias map against the hard disks.
+  json dem = nullptr;
+  if (std::find(particle_models.begin(), particle_models.end(), "particles/lammps") !=
+      particle_models.end()) {
+    const auto hard = own_reference.find("particles/event_driven");
+    dem = dem_map(scene, runs, model_error, observables,
+                  hard == own_reference.end() ? nullptr : hard->second, scene.t0_theory,
+                  options.tolerance, scene.sigmas);
+  }
 
   // 7. The ladder timeline: how long each model's best run stays within the tolerance.
   json timeline = json::array();
   for (const auto& rung : ladder) {
     if (!rung.skipped.empty()) continue;
-    const AtlasRun* best = own_reference.count(rung.model) ? own_reference[rung.model] : nullptr;
+    const AtlasRun* best_run =
+        own_reference.count(rung.model) ? own_reference[rung.model] : nullptr;
     for (const auto& r : runs) {
-      if (!best && r.setting.model == rung.model && r.status == "ok") best = &r;
+      if (!best_run && r.setting.model == rung.model && r.status == "ok") best_run = &r;
     }
-    if (!best) continue;
-    const std::vector<std::string> judged = provided_observables(*best, observables);
-    const std::vector<double> e = error_over_time(*best, reference, judged);
+    if (!best_run) continue;
+    const std::vector<std::string> judged = provided_observables(*best_run, observables);
+    const std::vector<ObservableError> e =
+        error_over_time(*best_run, reference, judged, scene.sigmas);
     json until = nullptr, exceeded = nullptr;
     for (std::size_t i = 0; i < e.size(); ++i) {
-      if (!(e[i] <= options.tolerance)) {
+      if (!atlas::within_tolerance(e[i].error, e[i].reference_error, options.tolerance,
+                                   scene.sigmas)) {
         exceeded = reference.times[i];
         break;
       }
       until = reference.times[i];
     }
-    json errs = json::array();
-    for (double x : e) errs.push_back(number_or_null(x));
+    json errs = json::array(), reference_errs = json::array();
+    for (const auto& x : e) {
+      errs.push_back(number_or_null(x.error));
+      reference_errs.push_back(number_or_null(x.reference_error));
+    }
     timeline.push_back({{"model", rung.model},
-                        {"setting", setting_json(best->setting)},
+                        {"setting", setting_json(best_run->setting)},
                         {"judged", judged},
                         {"times", reference.times},
                         {"error", errs},
+                        {"reference_statistical_error", reference_errs},
                         {"adequate_until", until},
                         {"exceeded_at", exceeded}});
   }
@@ -607,7 +822,7 @@ int atlas_command(const AtlasOptions& options) {
     for (const auto& name : observables) {
       if (fronts[name][i]) pareto.push_back(name);
     }
-    const double num = largest(numerical[i]), mod = largest(model_error[i]);
+    const double num = largest(errors_of(numerical[i])), mod = largest(errors_of(model_error[i]));
     json row = setting_json(r.setting);
     row.update({{"status", r.status},
                 {"reason", r.reason},
@@ -616,11 +831,21 @@ int atlas_command(const AtlasOptions& options) {
                 {"work_unit", r.cost.work_unit},
                 {"rejected_steps", r.rejected_steps},
                 {"cached", r.cached},
-                {"numerical_error", errors_json(numerical[i])},
-                {"model_error", errors_json(model_error[i])},
+                {"numerical_error", errors_json(errors_of(numerical[i]))},
+                {"model_error", errors_json(errors_of(model_error[i]))},
+                {"reference_statistical_error", errors_json(reference_errors_of(model_error[i]))},
                 {"over_resolved", r.setting.model != richest && std::isfinite(num) &&
                                       std::isfinite(mod) && num < kOverResolved * mod},
                 {"pareto", pareto}});
+    if (is_particles(r.setting.model) && r.status == "ok") {
+      json sc = json::object();
+      for (const auto& [k, v] : r.scalars) {
+        sc[k] = {
+            {"value", number_or_null(v)},
+            {"error", number_or_null(r.scalar_errors.count(k) ? r.scalar_errors.at(k) : kNoValue)}};
+      }
+      row["scalars"] = sc;
+    }
     run_rows.push_back(row);
   }
   json ladder_rows = json::array();
@@ -631,35 +856,40 @@ int atlas_command(const AtlasOptions& options) {
   }
   bool converged = true;
   for (const auto& [k, v] : convergence) converged &= v <= options.tolerance;
-  json atlas = {{"recommendation", recommendation},
-                {"case", scene.name},
-                {"granvv_version", GRANVV_VERSION},
-                {"status", "ok"},
-                {"tolerance", options.tolerance},
-                {"budget_seconds", options.budget},
-                {"jobs", jobs},
-                {"observables", observables},
-                {"observables_not_judged",
-                 {{"names", not_judged},
-                  {"why",
-                   "the reference run does not give them (a crossing level its peak "
-                   "density never reached)"}}},
-                {"times", scene.times},
-                {"ladder", ladder_rows},
-                {"reference",
-                 {{"setting", setting_json(reference.setting)},
-                  {"convergence", errors_json(convergence)},
-                  {"converged_to_tolerance", converged},
-                  {"how",
-                   "largest difference to its neighbours one step coarser in cells and "
-                   "in step factor: an upper bound of its own error"}}},
-                {"runs", run_rows},
-                {"stability", stability},
-                {"timeline", timeline},
-                {"skipped", skipped},
-                {"runs_made", runner.made()},
-                {"run_seconds", runner.spent()},
-                {"wall_seconds", seconds_since(start)}};
+  json atlas = {
+      {"recommendation", recommendation},
+      {"case", scene.name},
+      {"granvv_version", GRANVV_VERSION},
+      {"status", "ok"},
+      {"tolerance", options.tolerance},
+      {"sigmas", scene.sigmas},
+      {"budget_seconds", options.budget},
+      {"jobs", jobs},
+      {"observables", observables},
+      {"observables_not_judged",
+       {{"names", not_judged},
+        {"why",
+         "the reference run does not give them (a crossing level its peak "
+         "density never reached, or a crossing time of the particles)"}}},
+      {"times", scene.times},
+      {"ladder", ladder_rows},
+      {"reference",
+       {{"setting", setting_json(reference.setting)},
+        {"convergence", errors_json(convergence)},
+        {"statistical_error", errors_json(statistical)},
+        {"converged_to_tolerance", converged},
+        {"how", particle_reference ? "the reference's ensemble standard error (relative; the "
+                                     "event-driven hard disks have no discretisation knob)"
+                                   : "largest difference to its neighbours one step coarser in "
+                                     "cells and in step factor: an upper bound of its own error"}}},
+      {"runs", run_rows},
+      {"stability", stability},
+      {"dem_map", dem},
+      {"timeline", timeline},
+      {"skipped", skipped},
+      {"runs_made", runner.made()},
+      {"run_seconds", runner.spent()},
+      {"wall_seconds", seconds_since(start)}};
   try {
     write_atlas_h5(dir / "atlas.h5", runs, numerical, model_error, observables);
     write_file_atomically(dir / "atlas.json", summary_text(atlas));
@@ -667,12 +897,9 @@ int atlas_command(const AtlasOptions& options) {
     std::cerr << "granvv: error: atlas: " << e.what() << "\n";
     return 1;
   }
-  if (recommendation["model"].is_string()) {
+  if (best) {
     std::cerr << "atlas: at tolerance " << options.tolerance << " the cheapest adequate model is "
-              << describe(runs[candidate_run[*atlas::cheapest_adequate(candidates, observables,
-                                                                       options.tolerance)]]
-                              .setting)
-              << "\n";
+              << describe(runs[candidate_run[*best]].setting) << "\n";
   } else {
     std::cerr << "atlas: no run meets tolerance " << options.tolerance << " on every observable\n";
   }

@@ -4,17 +4,20 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "app/atomic_file.hpp"
 #include "app/case_config.hpp"
 #include "app/compare_scene.hpp"
 #include "app/hydro_scene.hpp"
+#include "app/interruption.hpp"
 #include "app/json_numbers.hpp"
 #include "app/md_scene.hpp"
 #include "app/model.hpp"
+#include "atlas/work_precision.hpp"
 #include "compare/binned_energies.hpp"
+#include "compare/ensemble_statistics.hpp"
+#include "compare/model_comparison.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -22,13 +25,9 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using atlas::kNoValue;
 // Bumped whenever what a cached run holds changes, so that old cache files are not read.
-constexpr int kCacheFormat = 1;
-
-bool is_hydro(const AtlasSetting& s) {
-  return s.model.rfind("hydro/", 0) == 0;
-}
+constexpr int kCacheFormat = 2;
 
 // FNV-1a, 64 bit: names a cache file after the text of its resolved case (not a security hash).
 std::string text_hash(const std::string& text) {
@@ -43,6 +42,16 @@ std::string text_hash(const std::string& text) {
 }
 
 }  // namespace
+
+bool is_hydro(const std::string& model) {
+  return model.rfind("hydro/", 0) == 0;
+}
+bool is_particles(const std::string& model) {
+  return model.rfind("particles/", 0) == 0;
+}
+bool is_lammps(const std::string& model) {
+  return model == "particles/lammps";
+}
 
 HydroScene atlas_hydro_scene(const CaseConfig& config, const AtlasScene& scene) {
   HydroScene hydro = hydro_scene_from(config);
@@ -81,54 +90,107 @@ std::string hydro_status(const HydroOutcome& out) {
   return "failed";
 }
 
-// The run's compared times, energies and fields from a model's result.
+// The compared times as a series without fields, to pair a model's snapshots with.
+fields::FieldSeries compared_times(const AtlasScene& scene) {
+  fields::FieldSeries times;
+  for (double t : scene.times) {
+    fields::FieldSnapshot s;
+    s.t = t;
+    times.snapshots.push_back(s);
+  }
+  return times;
+}
+
+compare::EnergiesPerParticle energies(const fields::FieldSnapshot& s) {
+  fields::FieldSnapshot full = s;  // flow by inertia has no T, a 1D hydro may have no v_y
+  if (full.T.empty()) full.T.assign(full.n.size(), 0.0);
+  if (full.v_y.empty()) full.v_y.assign(full.n.size(), 0.0);
+  return compare::box_energies(full);
+}
+
+// The run's compared times, energies, fields and scalars from a model's result.
 void take_result(const AtlasScene& scene, const fields::ModelResult& r, AtlasRun& run) {
   run.cost = r.cost;
   for (const auto& o : r.observables) {
-    if (o.name.rfind("crossing_time_n", 0) == 0) run.crossing_times[o.name] = o.value;
+    run.scalars[o.name] = o.value;
+    run.scalar_errors[o.name] = o.standard_error;
   }
   if (!r.fields) return;
   fields::FieldSeries kept = fields::FieldSeries::on_bins(-0.5, 1.0, scene.bins);
-  for (double t : scene.times) {
-    for (const auto& s : r.fields->snapshots) {
-      if (std::abs(s.t - t) > 1e-9 * std::max(1.0, t)) continue;
-      fields::FieldSnapshot full = s;  // flow by inertia has no T, a 1D hydro may have no v_y
-      if (full.T.empty()) full.T.assign(full.n.size(), 0.0);
-      if (full.v_y.empty()) full.v_y.assign(full.n.size(), 0.0);
-      const compare::EnergiesPerParticle e = compare::box_energies(full);
-      run.times.push_back(t);
-      run.thermal.push_back(s.T.empty() ? kNaN : e.thermal);
-      run.flow.push_back(e.flow);
-      kept.snapshots.push_back(s);
-      break;
-    }
+  for (const auto& [i, j] : compare::common_snapshots(compared_times(scene), *r.fields)) {
+    const fields::FieldSnapshot& s = r.fields->snapshots[j];
+    const compare::EnergiesPerParticle e = energies(s);
+    run.times.push_back(scene.times[i]);
+    run.thermal.push_back(s.T.empty() ? kNoValue : e.thermal);
+    run.flow.push_back(e.flow);
+    run.thermal_error.push_back(kNoValue);
+    run.flow_error.push_back(kNoValue);
+    kept.snapshots.push_back(s);
   }
   run.fields = std::move(kept);
 }
 
-json series_json(const fields::FieldSeries& f) {
-  json snaps = json::array();
-  for (const auto& s : f.snapshots) {
-    snaps.push_back({{"t", s.t}, {"n", s.n}, {"v_x", s.v_x}, {"v_y", s.v_y}, {"T", s.T}});
+// The ensemble standard errors of the box energies at the kept times: the scatter of the
+// members' own box energies (each member's snapshot j is the mean's snapshot j,
+// compare/ensemble_fields.hpp). Energies per particle are the same in MD and scaled units.
+void take_energy_errors(const AtlasScene& scene, const fields::ModelResult& r,
+                        const MdOutcome& outcome, AtlasRun& run) {
+  if (!r.fields) return;
+  std::size_t k = 0;
+  for (const auto& [i, j] : compare::common_snapshots(compared_times(scene), *r.fields)) {
+    (void)i;
+    std::vector<std::vector<double>> thermal, flow;
+    for (const auto& member : outcome.runs) {
+      if (j >= member.fields.snapshots.size()) continue;
+      const compare::EnergiesPerParticle e = energies(member.fields.snapshots[j]);
+      thermal.push_back({e.thermal});
+      flow.push_back({e.flow});
+    }
+    if (!thermal.empty()) {
+      run.thermal_error[k] = compare::ensemble_statistics(thermal).standard_error[0];
+      run.flow_error[k] = compare::ensemble_statistics(flow).standard_error[0];
+    }
+    ++k;
   }
-  return {{"bins", f.bin_edges.size() - 1}, {"snapshots", snaps}};
 }
 
-fields::FieldSeries series_from_json(const json& j) {
-  fields::FieldSeries f = fields::FieldSeries::on_bins(-0.5, 1.0, j["bins"].get<int>());
-  const int bins = j["bins"].get<int>();
-  for (const auto& s : j["snapshots"]) {
-    fields::FieldSnapshot snap;
-    snap.t = s["t"].get<double>();
-    snap.label = "output";
-    for (int b = 0; b < bins; ++b) snap.x.push_back(-0.5 + (b + 0.5) / bins);
-    snap.n = s["n"].get<std::vector<double>>();
-    snap.v_x = s["v_x"].get<std::vector<double>>();
-    snap.v_y = s["v_y"].get<std::vector<double>>();
-    snap.T = s["T"].get<std::vector<double>>();
-    f.snapshots.push_back(std::move(snap));
+// An engine without a contact virial in the box pressure (the event-driven one: its collisional
+// transfer is the series value collision_virial_pressure, the mean over the interval since the
+// previous sample) gets its pressure here, as the kinetic n0 T plus that transfer, with T the
+// mean of the interval's two ends (the gas cools during it): P/(n0 T0) and P/(n0 T) averaged
+// over each member's samples, then their mean and standard error over the members.
+void take_collisional_pressure(const MdScene& md, const MdOutcome& outcome, AtlasRun& run) {
+  if (std::isfinite(run.scalars["pressure"])) return;
+  const double n0 = md.spec.scene.number_density();
+  std::vector<std::vector<double>> pressure, compressibility;
+  for (const auto& member : outcome.runs) {
+    const auto& series = member.series;
+    const std::vector<double>* transfer = nullptr;
+    for (const auto& [name, values] : series.engine) {
+      if (name == "collision_virial_pressure") transfer = &values;
+    }
+    if (!transfer || transfer->size() != series.T.size() || series.T.size() < 2) return;
+    double p = 0.0, z = 0.0;
+    for (std::size_t s = 1; s < series.T.size(); ++s) {
+      const double T = 0.5 * (series.T[s - 1] + series.T[s]);
+      p += (n0 * T + (*transfer)[s]) / n0;
+      z += 1.0 + (*transfer)[s] / (n0 * T);
+    }
+    pressure.push_back({p / double(series.T.size() - 1)});
+    compressibility.push_back({z / double(series.T.size() - 1)});
   }
-  return f;
+  const auto p = compare::ensemble_statistics(pressure);
+  const auto z = compare::ensemble_statistics(compressibility);
+  run.scalars["pressure"] = p.mean[0], run.scalar_errors["pressure"] = p.standard_error[0];
+  run.scalars["compressibility"] = z.mean[0];
+  run.scalar_errors["compressibility"] = z.standard_error[0];
+}
+
+// A particle run that threw, in the atlas's failure names (app/atlas_runs.hpp).
+std::string particle_failure(const std::string& what) {
+  if (what.find("misses md.restitution") != std::string::npos) return "restitution_check_missed";
+  if (what.find("event-rate runaway") != std::string::npos) return "event_rate_runaway";
+  return "engine_failed";
 }
 
 // NaN is not JSON: absent values are null in the cache as in every output (docs/outputs.md).
@@ -139,8 +201,39 @@ json numbers(const std::vector<double>& v) {
 }
 std::vector<double> numbers_from(const json& a) {
   std::vector<double> v;
-  for (const auto& x : a) v.push_back(x.is_number() ? x.get<double>() : kNaN);
+  for (const auto& x : a) v.push_back(x.is_number() ? x.get<double>() : kNoValue);
   return v;
+}
+
+json series_json(const fields::FieldSeries& f) {
+  json snaps = json::array();
+  for (const auto& s : f.snapshots) {
+    json snap = {{"t", s.t}};
+    for (const auto& c : fields::field_columns()) {
+      if (!(s.*c.values).empty()) snap[c.name] = numbers(s.*c.values);
+      if (c.standard_error && !(s.*c.standard_error).empty()) {
+        snap[std::string(c.name) + "_stderr"] = numbers(s.*c.standard_error);
+      }
+    }
+    snaps.push_back(snap);
+  }
+  return {{"bins", f.bin_edges.size() - 1}, {"snapshots", snaps}};
+}
+
+fields::FieldSeries series_from_json(const json& j) {
+  fields::FieldSeries f = fields::FieldSeries::on_bins(-0.5, 1.0, j["bins"].get<int>());
+  for (const auto& s : j["snapshots"]) {
+    fields::FieldSnapshot snap;
+    snap.t = s["t"].get<double>();
+    snap.label = "output";
+    for (const auto& c : fields::field_columns()) {
+      if (s.contains(c.name)) snap.*c.values = numbers_from(s[c.name]);
+      const std::string e = std::string(c.name) + "_stderr";
+      if (c.standard_error && s.contains(e)) snap.*c.standard_error = numbers_from(s[e]);
+    }
+    f.snapshots.push_back(std::move(snap));
+  }
+  return f;
 }
 
 json run_json(const AtlasRun& r) {
@@ -151,10 +244,16 @@ json run_json(const AtlasRun& r) {
             {"work", r.cost.work},
             {"work_unit", r.cost.work_unit},
             {"rejected_steps", r.rejected_steps},
-            {"crossing_times", r.crossing_times},
             {"times", r.times},
             {"thermal", numbers(r.thermal)},
-            {"flow", numbers(r.flow)}};
+            {"flow", numbers(r.flow)},
+            {"thermal_error", numbers(r.thermal_error)},
+            {"flow_error", numbers(r.flow_error)}};
+  json scalars = json::object(), errors = json::object();
+  for (const auto& [k, v] : r.scalars) scalars[k] = number_or_null(v);
+  for (const auto& [k, v] : r.scalar_errors) errors[k] = number_or_null(v);
+  j["scalars"] = scalars;
+  j["scalar_errors"] = errors;
   j["fields"] = r.fields ? series_json(*r.fields) : json(nullptr);
   return j;
 }
@@ -168,10 +267,16 @@ std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting
   r.cost = {j["wall_seconds"].get<double>(), j["work"].get<double>(),
             j["work_unit"].get<std::string>()};
   r.rejected_steps = j["rejected_steps"].get<long long>();
-  r.crossing_times = j["crossing_times"].get<std::map<std::string, double>>();
+  for (const auto& [k, v] : j["scalars"].items())
+    r.scalars[k] = v.is_number() ? v.get<double>() : kNoValue;
+  for (const auto& [k, v] : j["scalar_errors"].items()) {
+    r.scalar_errors[k] = v.is_number() ? v.get<double>() : kNoValue;
+  }
   r.times = j["times"].get<std::vector<double>>();
   r.thermal = numbers_from(j["thermal"]);
   r.flow = numbers_from(j["flow"]);
+  r.thermal_error = numbers_from(j["thermal_error"]);
+  r.flow_error = numbers_from(j["flow_error"]);
   if (!j["fields"].is_null()) r.fields = series_from_json(j["fields"]);
   r.cached = true;
   return r;
@@ -180,21 +285,39 @@ std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting
 }  // namespace
 
 std::string describe(const AtlasSetting& s) {
-  if (!is_hydro(s)) return s.model;
-  char knobs[96];
-  std::snprintf(knobs, sizeof knobs, " cells=%d step_factor=%g", s.cells, s.step_factor);
+  char knobs[160] = "";
+  if (is_hydro(s.model)) {
+    std::snprintf(knobs, sizeof knobs, " cells=%d step_factor=%g", s.cells, s.step_factor);
+  } else if (is_lammps(s.model)) {
+    std::snprintf(knobs, sizeof knobs,
+                  " ensemble=%d max_overlap=%g steps_per_contact=%d adaptive_stiffness=%s",
+                  s.ensemble, s.max_overlap, s.steps_per_contact,
+                  s.adaptive_stiffness ? "true" : "false");
+  } else if (is_particles(s.model)) {
+    std::snprintf(knobs, sizeof knobs, " ensemble=%d", s.ensemble);
+  }
   return s.model + knobs;
 }
 
 std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& s) {
   std::vector<std::string> sets = scene.sets;
-  if (!is_hydro(s)) return sets;
-  sets.push_back("hydro.closure=" + toml_quoted(s.model.substr(6)));
-  sets.push_back("hydro.cells=" + std::to_string(s.cells));
-  sets.push_back("hydro.cfl=" + format_real(scene.case_cfl * s.step_factor));
-  sets.push_back("hydro.dt_max=" + format_real(scene.case_dt_max * s.step_factor));
-  sets.push_back("hydro.max_compression=" +
-                 format_real(scene.case_max_compression * s.step_factor));
+  if (is_hydro(s.model)) {
+    sets.push_back("hydro.closure=" + toml_quoted(s.model.substr(6)));
+    sets.push_back("hydro.cells=" + std::to_string(s.cells));
+    sets.push_back("hydro.cfl=" + format_real(scene.case_cfl * s.step_factor));
+    sets.push_back("hydro.dt_max=" + format_real(scene.case_dt_max * s.step_factor));
+    sets.push_back("hydro.max_compression=" +
+                   format_real(scene.case_max_compression * s.step_factor));
+  } else if (is_particles(s.model)) {
+    sets.push_back("md.engine=" + toml_quoted(s.model.substr(10)));
+    sets.push_back("md.ensemble=" + std::to_string(s.ensemble));
+    if (is_lammps(s.model)) {
+      sets.push_back("md.max_overlap=" + format_real(s.max_overlap));
+      sets.push_back("md.steps_per_contact=" + std::to_string(s.steps_per_contact));
+      sets.push_back(std::string("md.adaptive_stiffness=") +
+                     (s.adaptive_stiffness ? "true" : "false"));
+    }
+  }
   return sets;
 }
 
@@ -228,29 +351,59 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     }
   }
   try {
-    const HydroScene hydro = atlas_hydro_scene(*config, scene);
-    if (is_hydro(setting)) {
-      HydroModel model(hydro, scene.bins);
-      const fields::ModelResult r = model.run();
-      run.status = hydro_status(model.outcome());
-      run.reason = model.outcome().run.stop_reason;
-      run.rejected_steps = model.outcome().run.rejected_steps;
+    if (is_particles(setting.model)) {
+      const std::optional<MdScene> md = md_scene_from(*config, hydro_scene_from(*config));
+      const auto engine = make_engine(*md, "");
+      // A signal stops the run at its next sample (app/interruption.hpp).
+      ParticleModel model(*md, *engine, [](int, const md::MdProgress&) { stop_if_interrupted(); });
+      fields::ModelResult r = model.run();
+      // A soft-contact engine reaches a compared time to within its time step (the largest,
+      // at the end of a run with adaptive stiffness): its snapshot stands for that time.
+      const double slack = md->spec.scene.scaled_time(engine->time_resolution());
+      for (auto& snap : r.fields->snapshots) {
+        for (double t : scene.times) {
+          if (std::abs(snap.t - t) <= slack) snap.t = t;
+        }
+      }
       take_result(scene, r, run);
-    } else if (setting.model == "haff_ode") {
-      take_result(scene, make_haff_model(hydro.physics, scene.times, scene.bins)->run(), run);
+      take_energy_errors(scene, r, model.outcome(), run);
+      take_collisional_pressure(*md, model.outcome(), run);
       run.status = "ok";
     } else {
-      take_result(scene,
-                  make_inertia_model(hydro.initial, hydro.physics, scene.times, scene.bins,
-                                     scene.crossing_levels)
-                      ->run(),
-                  run);
-      run.status = "ok";
+      const HydroScene hydro = atlas_hydro_scene(*config, scene);
+      if (is_hydro(setting.model)) {
+        HydroModel model(hydro, scene.bins);
+        const fields::ModelResult r = model.run();
+        run.status = hydro_status(model.outcome());
+        run.reason = model.outcome().run.stop_reason;
+        run.rejected_steps = model.outcome().run.rejected_steps;
+        take_result(scene, r, run);
+      } else if (setting.model == "haff_ode") {
+        take_result(scene, make_haff_model(hydro.physics, scene.times, scene.bins)->run(), run);
+        run.status = "ok";
+      } else {
+        take_result(scene,
+                    make_inertia_model(hydro.initial, hydro.physics, scene.times, scene.bins,
+                                       scene.crossing_levels)
+                        ->run(),
+                    run);
+        run.status = "ok";
+      }
     }
   } catch (const ConfigError& e) {
     run.status = "refused";
     run.reason = e.what();
     return run;
+  } catch (const Interrupted& e) {
+    run.status = "interrupted";
+    run.reason = e.what();
+    return run;
+  } catch (const std::runtime_error& e) {  // the particle engine failed: kept, it is an outcome
+    if (!is_particles(setting.model)) throw;
+    run = AtlasRun{};
+    run.setting = setting;
+    run.status = particle_failure(e.what());
+    run.reason = e.what();
   }
   write_file_atomically(cache_file, run_json(run).dump() + "\n");
   return run;

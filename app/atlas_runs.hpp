@@ -16,14 +16,26 @@ namespace granvv::app {
 
 // One setting of one model of the ladder.
 struct AtlasSetting {
-  std::string model;  // "haff_ode", "flow_by_inertia", "hydro/<closure>"
+  // "haff_ode", "flow_by_inertia", "hydro/<closure>", "particles/<engine>" (md.engine)
+  std::string model;
   // The hydro's knobs: cells, and the factor on its step bounds hydro.cfl, hydro.dt_max and
-  // hydro.max_compression (1 = the case's own); 0 for the exact solutions, which have none.
+  // hydro.max_compression (1 = the case's own); 0 for the other models.
   int cells = 0;
   double step_factor = 0.0;
+  // The particles' knobs: md.ensemble, and LAMMPS's contact (md.max_overlap,
+  // md.steps_per_contact, md.adaptive_stiffness; 0 for the event-driven engine, which has none).
+  int ensemble = 0;
+  double max_overlap = 0.0;
+  int steps_per_contact = 0;
+  bool adaptive_stiffness = false;
 };
 
-// "hydro/dilute cells=500 step_factor=1", "haff_ode".
+bool is_hydro(const std::string& model);
+bool is_particles(const std::string& model);
+// The soft-contact engine, whose contact knobs the atlas sweeps.
+bool is_lammps(const std::string& model);
+
+// "hydro/dilute cells=500 step_factor=1", "particles/event_driven ensemble=16", "haff_ode".
 std::string describe(const AtlasSetting& setting);
 
 // What the atlas keeps of a run.
@@ -31,15 +43,21 @@ struct AtlasRun {
   AtlasSetting setting;
   // "ok", or how it failed: inadmissible_step, non_finite, step_underflow, closure_limit,
   // unresolved_singularity (a cell reached hydro.min_cell_width before the peak density reached
-  // hydro.stop_density), refused (the case schema or the scene refused the setting).
+  // hydro.stop_density); for the particles restitution_check_missed, event_rate_runaway,
+  // engine_failed; refused (the case schema or the scene refused the setting); interrupted.
   std::string status;
   std::string reason;  // the model's own words
   fields::ModelCost cost;
   long long rejected_steps = 0;
-  std::map<std::string, double> crossing_times;  // "crossing_time_n10" -> t
+  // Named scalars with their standard errors (NaN: none): crossing_time_n<level>, haff_t0 and,
+  // for the particles, pressure and compressibility (the box's P and P/(nT), averaged over the
+  // samples and the members).
+  std::map<std::string, double> scalars, scalar_errors;
   // The compared times the run reached, its energies per particle there (NaN where the model
-  // has none: flow by inertia has no temperature) and its fields on the atlas's bins.
-  std::vector<double> times, thermal, flow;
+  // has none: flow by inertia has no temperature) with their ensemble standard errors (NaN for
+  // a deterministic model) and its fields on the atlas's bins (with the *_stderr of a particle
+  // ensemble mean).
+  std::vector<double> times, thermal, flow, thermal_error, flow_error;
   std::optional<fields::FieldSeries> fields;
   bool cached = false;  // taken from the cache, not run now
 };
@@ -54,9 +72,19 @@ struct AtlasScene {
   double case_cfl = 0.0, case_dt_max = 0.0, case_max_compression = 0.0;
   std::vector<double> times;  // compared times, scaled units
   std::vector<double> crossing_levels;
-  int bins = 0;                // atlas.bins
+  int bins = 0;                // atlas.bins (a particle scene's md.bins)
   double area_fraction = 0.0;  // physics.area_fraction (a particle scene's md.area_fraction)
   bool particles = false;      // md.enabled
+  // The case's own particle knobs (md.ensemble, md.max_overlap, md.steps_per_contact,
+  // md.adaptive_stiffness) and its particle count.
+  int case_ensemble = 0;
+  double case_max_overlap = 0.0;
+  int case_steps_per_contact = 0;
+  bool case_adaptive_stiffness = false;
+  long long particle_count = 0;
+  double md_t_end = 0.0, md_t_haff = 0.0;  // md.t_end and the kinetic-theory Haff time, MD units
+  double t0_theory = 0.0;  // the Enskog kinetic-theory Haff time (with chi), scaled units
+  double sigmas = 3.0;     // compare.sigmas: the allowance of σ-aware adequacy
   bool has_inertia_reference = false;
 };
 
@@ -70,7 +98,9 @@ HydroScene atlas_hydro_scene(const CaseConfig& config, const AtlasScene& scene);
 std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& setting);
 
 // Runs one setting, or takes it from cache_dir (the file named by the hash of its resolved
-// case). A setting the schema or the scene refuses comes back with status "refused".
+// case). A setting the schema or the scene refuses comes back with status "refused"; a run a
+// signal stopped, with status "interrupted" (and is not cached). Particle runs call MPI: run
+// them on the main thread.
 AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
                            const std::filesystem::path& cache_dir);
 

@@ -241,7 +241,13 @@ std::vector<KeySpec> rows_without_initial() {
       {"atlas.step_factors", kReals, kEmpty, increasing(open_closed(0, 64)),
        "factors on hydro.cfl, hydro.dt_max and hydro.max_compression ([] = 1/4, 1/2, 1, 2, 4)"},
       {"atlas.bins", kInteger, 64, closed_closed(4, 4096),
-       "bins on which every model's fields are compared"},
+       "bins on which every model's fields are compared (a particle scene: md.bins)"},
+      {"atlas.ensembles", kIntegers, kEmpty, increasing(closed_closed(1, 1000)),
+       "ensemble sizes of the event-driven engine ([] = 1, 2, 4, ..., 512 within the budget)"},
+      {"atlas.max_overlaps", kReals, kEmpty, increasing(open_closed(0, 0.1)),
+       "LAMMPS md.max_overlap values ([] = md.max_overlap times 1/2, 1, 2, 5, 10)"},
+      {"atlas.steps_per_contacts", kIntegers, kEmpty, increasing(closed_closed(10, 1e4)),
+       "LAMMPS md.steps_per_contact values ([] = md.steps_per_contact times 1/3, 1/2, 1, 2)"},
   };
 }
 

@@ -3,6 +3,7 @@
 // built from its part of the resolved case and, run, returns a fields::ModelResult in the
 // hydro's scaled units: its fields where it has them (on the bins asked for), named observables
 // and its cost. compare/model_comparison.hpp weighs any two results.
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -14,6 +15,9 @@
 #include "fields/model_result.hpp"
 
 namespace granvv::app {
+
+// Wall seconds from start to now: a model's cost (fields::ModelCost).
+double seconds_since(std::chrono::steady_clock::time_point start);
 
 class Model {
  public:
@@ -58,8 +62,9 @@ fields::ModelResult hydro_result(const HydroScene& scene, const HydroOutcome& ou
 std::string crossing_time_name(double level);
 
 // The particles with their engine, an ensemble of seeds. Fields: the ensemble mean on the
-// particles' bins with the error of that mean (compare::ensemble_mean_fields). Observable haff_t0
-// (the fit to the ensemble, with its standard error).
+// particles' bins with the error of that mean (compare::ensemble_mean_fields). Observables with
+// their standard errors: haff_t0 (the fit to the ensemble), pressure (the box's, in n0 T0) and
+// compressibility P/(nT), both averaged over the samples and the members.
 class ParticleModel : public Model {
  public:
   using Progress = std::function<void(int member, const md::MdProgress&)>;

@@ -31,6 +31,10 @@ fields::ModelResult particle_result(const MdScene& scene, const MdOutcome& out,
   const auto& sc = scene.spec.scene;
   r.observables.push_back(
       {"haff_t0", sc.scaled_time(out.haff.t0), sc.scaled_time(out.haff.t0_error)});
+  // The box's pressure over the run in the scaled unit n0 T0 (T0 = 1 in MD units), and P/(nT).
+  const double n0 = sc.number_density();
+  r.observables.push_back({"pressure", out.pressure.mean / n0, out.pressure.error / n0});
+  r.observables.push_back({"compressibility", out.compressibility.mean, out.compressibility.error});
   r.cost = out.cost;
   return r;
 }

@@ -17,10 +17,6 @@ constexpr double kInertiaBeforeSingularity = 0.999;
 // Lagrangian labels per bin of the flow-by-inertia state (second-order masses, binned exactly).
 constexpr int kInertiaLabelsPerBin = 100;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 class HaffModel : public Model {
  public:
   HaffModel(const hydro::Physics& physics, std::vector<double> times, int bins)
@@ -102,6 +98,10 @@ class InertiaModel : public Model {
 };
 
 }  // namespace
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 std::unique_ptr<Model> make_haff_model(const hydro::Physics& physics, std::vector<double> times,
                                        int bins) {

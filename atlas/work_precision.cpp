@@ -1,13 +1,12 @@
 #include "atlas/work_precision.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace granvv::atlas {
 
 double relative_error(double candidate, double reference) {
   if (!std::isfinite(candidate) || !std::isfinite(reference)) {
-    return std::numeric_limits<double>::quiet_NaN();
+    return kNoValue;
   }
   if (reference == 0.0) return std::abs(candidate);
   return std::abs(candidate / reference - 1.0);
@@ -15,12 +14,11 @@ double relative_error(double candidate, double reference) {
 
 double largest_relative_error(const std::vector<double>& candidate,
                               const std::vector<double>& reference) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (candidate.size() != reference.size() || candidate.empty()) return nan;
+  if (candidate.size() != reference.size() || candidate.empty()) return kNoValue;
   double worst = 0.0;
   for (std::size_t i = 0; i < candidate.size(); ++i) {
     const double e = relative_error(candidate[i], reference[i]);
-    if (std::isnan(e)) return nan;
+    if (std::isnan(e)) return kNoValue;
     worst = std::max(worst, e);
   }
   return worst;

@@ -1,9 +1,14 @@
 #pragma once
 // The measures of a work-precision diagram (docs/atlas.md): the error of a model's observable
 // against a reference, and the Pareto front of error against cost.
+#include <limits>
 #include <vector>
 
 namespace granvv::atlas {
+
+// What a run does not give (an observable, an error, a time it did not reach): NaN in memory,
+// null in JSON, NaN in HDF5 (docs/atlas.md).
+inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 // |candidate / reference - 1|; |candidate| when the reference is 0; NaN when either is not finite.
 double relative_error(double candidate, double reference);

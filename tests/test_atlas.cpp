@@ -1,6 +1,8 @@
 // `granvv atlas` (docs/atlas.md): its pure pieces against known answers (the Pareto front, the
-// cheapest adequate candidate, the log-scale boundary search, the flow-by-inertia crossing times),
-// and the command through the real binary on the Haff and single-mode scenes with small grids.
+// cheapest adequate candidate, σ-aware adequacy, the bias of two measurements, the DEM work
+// ratio, the log-scale boundary search, the flow-by-inertia crossing times), and the command
+// through the real binary on the Haff and single-mode scenes with small grids and on a tiny
+// particle ladder with both engines (real LAMMPS, the real event-driven engine).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "atlas/particle_cost.hpp"
 #include "atlas/recommendation.hpp"
+#include "atlas/relative_bias.hpp"
 #include "atlas/stability_search.hpp"
 #include "atlas/work_precision.hpp"
 #include "hydro/inertia_crossing.hpp"
@@ -42,9 +46,53 @@ TEST(AtlasPieces, CheapestAdequateNeedsEveryObservable) {
   c[0] = {0.1, {{"a", 0.5}}};    // cheap, but wrong
   c[1] = {0.2, {{"a", 0.001}}};  // right on a, silent on b: not adequate for b
   c[2] = {0.3, {{"a", 0.001}, {"b", 0.002}}};
-  EXPECT_EQ(atlas::cheapest_adequate(c, {"a"}, 0.01), std::optional<std::size_t>(1));
-  EXPECT_EQ(atlas::cheapest_adequate(c, {"a", "b"}, 0.01), std::optional<std::size_t>(2));
-  EXPECT_FALSE(atlas::cheapest_adequate(c, {"a", "b"}, 1e-4).has_value());
+  EXPECT_EQ(atlas::cheapest_adequate(c, {"a"}, 0.01, 3.0), std::optional<std::size_t>(1));
+  EXPECT_EQ(atlas::cheapest_adequate(c, {"a", "b"}, 0.01, 3.0), std::optional<std::size_t>(2));
+  EXPECT_FALSE(atlas::cheapest_adequate(c, {"a", "b"}, 1e-4, 3.0).has_value());
+}
+
+TEST(AtlasPieces, SigmaAwareAdequacyAllowsTheReferencesOwnError) {
+  // e <= tolerance + sigmas * s (docs/atlas.md): at tolerance 1e-2 and 3 sigma with s = 1e-3 the
+  // threshold is 1.3e-2 exactly.
+  EXPECT_TRUE(atlas::within_tolerance(0.012, 0.001, 0.01, 3.0));
+  EXPECT_TRUE(atlas::within_tolerance(0.013, 0.001, 0.01, 3.0));
+  EXPECT_FALSE(atlas::within_tolerance(0.0131, 0.001, 0.01, 3.0));
+  // A deterministic reference (s = 0, or none: NaN) leaves the plain tolerance.
+  EXPECT_FALSE(atlas::within_tolerance(0.012, 0.0, 0.01, 3.0));
+  EXPECT_FALSE(atlas::within_tolerance(0.012, std::nan(""), 0.01, 3.0));
+  EXPECT_TRUE(atlas::within_tolerance(0.01, std::nan(""), 0.01, 3.0));
+  // No error (NaN) is never within; sigmas = 0 turns the allowance off.
+  EXPECT_FALSE(atlas::within_tolerance(std::nan(""), 0.001, 0.01, 3.0));
+  EXPECT_FALSE(atlas::within_tolerance(0.012, 0.001, 0.01, 0.0));
+  // Per observable: a is within its allowance (0.02 <= 0.01 + 3 x 0.004), b is not (no error
+  // given for b, so its threshold is 0.01).
+  atlas::Candidate c{1.0, {{"a", 0.02}, {"b", 0.02}}, {{"a", 0.004}}};
+  EXPECT_TRUE(atlas::adequate(c, {"a"}, 0.01, 3.0));
+  EXPECT_FALSE(atlas::adequate(c, {"a", "b"}, 0.01, 3.0));
+  c.reference_error["b"] = 0.004;
+  EXPECT_TRUE(atlas::adequate(c, {"a", "b"}, 0.01, 3.0));
+  EXPECT_FALSE(atlas::adequate(c, {"a", "b"}, 0.01, 2.0));  // 0.02 > 0.01 + 2 x 0.004
+}
+
+TEST(AtlasPieces, RelativeBiasAndItsError) {
+  // 1.03 +- 0.01 against 1.00 +- 0.02: +3 %, error sqrt(0.01^2 + (1.03 x 0.02)^2).
+  const auto b = atlas::relative_bias(1.03, 0.01, 1.0, 0.02);
+  EXPECT_NEAR(b.value, 0.03, 1e-14);
+  EXPECT_NEAR(b.error, std::hypot(0.01, 1.03 * 0.02), 1e-14);
+  // Errors that are NaN count as 0; a reference of 0 has no relative bias.
+  EXPECT_NEAR(atlas::relative_bias(2.0, std::nan(""), 4.0, 0.4).error, 2.0 * 0.4 / 16.0, 1e-15);
+  EXPECT_TRUE(std::isnan(atlas::relative_bias(1.0, 0.1, 0.0, 0.1).value));
+}
+
+TEST(AtlasPieces, DemWorkRatioFollowsTheContactKnobs) {
+  const atlas::ContactKnobs pilot{1, 0.01, 30, false};
+  // Twice the members, twice the steps per contact, half the overlap: 8 times the work.
+  EXPECT_NEAR(atlas::dem_work_ratio({2, 0.005, 60, false}, pilot, 30.0, 90.0), 8.0, 1e-12);
+  // Adaptive stiffness: t0 ln(1 + t_end/t0) first steps instead of t_end.
+  EXPECT_NEAR(atlas::dem_work_ratio({1, 0.01, 30, true}, pilot, 30.0, 90.0),
+              90.0 * std::log1p(30.0 / 90.0) / 30.0, 1e-12);
+  // Without cooling (t0 infinite) adaptive stiffness changes nothing.
+  EXPECT_NEAR(atlas::dem_work_ratio({1, 0.01, 30, true}, pilot, 30.0, INFINITY), 1.0, 1e-12);
 }
 
 TEST(AtlasPieces, BoundarySearchBracketsAKnownThreshold) {
@@ -136,6 +184,61 @@ TEST(AtlasCli, SingleModeLadderAndItsPage) {
   EXPECT_TRUE(fs::is_regular_file(dir / "atlas.html"));
 }
 
+TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
+  // 300 disks to t = 10 (MD units): the event-driven engine at 2 and 8 members (the hard-disk
+  // reference), LAMMPS at the case's contact (its pilot, one member) and at max_overlap 0.05
+  // with 15 steps per contact and with adaptive stiffness off. A few seconds.
+  const fs::path dir = fresh_directory("atlas_particles");
+  const std::string args =
+      "atlas md_haff --quiet --no-report --out " + shell_quote(dir.string()) +
+      " --set md.particles=300 --set md.box_width=68 --set md.t_end=10 --set md.sample_interval=1"
+      " --set 'md.output_times=[0,5,10]' --set md.ensemble=1 --set 'atlas.ensembles=[2,8]'"
+      " --set 'atlas.max_overlaps=[0.05]' --set 'atlas.steps_per_contacts=[15]'"
+      " --set 'atlas.cells=[16,32]' --set 'atlas.step_factors=[1]'";
+  const auto r = run_cli(args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json a = read_json(dir / "atlas.json");
+  // The hard disks at their largest ensemble are the reference, with a statistical error.
+  EXPECT_EQ(a["reference"]["setting"]["model"], "particles/event_driven");
+  EXPECT_EQ(a["reference"]["setting"]["ensemble"], 8);
+  EXPECT_EQ(a["observables"], json::array({"thermal_energy", "haff_t0"}));
+  EXPECT_GT(a["reference"]["statistical_error"]["haff_t0"].get<double>(), 0.0);
+  EXPECT_GT(a["reference"]["statistical_error"]["thermal_energy"].get<double>(), 0.0);
+  int lammps = 0, event_driven = 0;
+  for (const auto& run : a["runs"]) {
+    if (run["model"] == "particles/lammps") {
+      ++lammps;
+      EXPECT_EQ(run["status"], "ok") << run.dump();
+      EXPECT_EQ(run["work_unit"], "atom_steps");
+      // Every compared time was reached: the soft contacts' snapshots stand for them.
+      EXPECT_TRUE(run["model_error"].contains("thermal_energy")) << run.dump();
+    }
+    if (run["model"] == "particles/event_driven") {
+      ++event_driven;
+      EXPECT_EQ(run["work_unit"], "collisions");
+      EXPECT_GT(run["work"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(lammps, 3);
+  EXPECT_EQ(event_driven, 3);  // its pilot (one member), 2 and 8
+  // The DEM map: three contact settings, each with its t0 and P/(nT) bias and their errors.
+  const json& dem = a["dem_map"];
+  ASSERT_EQ(dem["points"].size(), 3u);
+  for (const auto& p : dem["points"]) {
+    EXPECT_TRUE(p["t0_bias"].is_number()) << p.dump();
+    EXPECT_GT(p["t0_bias_error"].get<double>(), 0.0) << p.dump();
+    EXPECT_TRUE(p["compressibility_bias"].is_number()) << p.dump();
+  }
+  EXPECT_EQ(dem["against"]["setting"], "particles/event_driven ensemble=8");
+  // The hard disks' P/(nT) from their collision virial is near Enskog's 1 + 2 phi chi = 1.10
+  // at phi = 0.05 (its statistical error at 8 x 300 disks is below 1 %; 3 % allows 3 sigma).
+  EXPECT_NEAR(dem["against"]["compressibility"].get<double>(), 1.10, 0.03);
+  // A second atlas takes every run from the cache.
+  const auto again = run_cli(args);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(read_json(dir / "atlas.json")["runs_made"], 0);
+}
+
 TEST(AtlasCli, BadInputIsOneLineAndExitTwo) {
   const fs::path dir = fresh_directory("atlas_bad");
   const std::string out = " --out " + shell_quote((dir / "x").string());
@@ -143,6 +246,8 @@ TEST(AtlasCli, BadInputIsOneLineAndExitTwo) {
        {std::string("atlas haff --tolerance -1"), std::string("atlas haff --budget 0"),
         std::string("atlas haff --jobs -2"),
         std::string("atlas haff --set atlas.observables='\"bogus\"'"),
+        std::string("atlas md_haff --set atlas.bins=30"),
+        std::string("atlas md_haff --set 'atlas.max_overlaps=[0.5]'"),
         std::string("atlas no_such_scene")}) {
     const auto r = run_cli_streams(args + out);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;

@@ -1,6 +1,8 @@
 """Figures of an atlas (atlas.json of `granvv atlas`, docs/atlas.md): a1 work-precision diagrams, one
 panel per judged observable; a2 the stability map of each hydro over cells and step factor; a3 the
-ladder timeline. Errors are relative, against the richest model's finest run; costs in wall seconds."""
+ladder timeline; a4 the DEM stability and bias map over max_overlap x steps_per_contact, against the
+event-driven hard disks. Errors are relative, against the richest model's finest run; costs in wall
+seconds."""
 import math
 
 import matplotlib.pyplot as plt
@@ -11,8 +13,9 @@ from .formatting import fmt
 from .registry import Drawn, figure
 
 MODEL_STYLE = {"haff_ode": ("C2", "s"), "flow_by_inertia": ("C1", "D"), "hydro/dilute": ("C0", "o"),
-               "hydro/enskog": ("C3", "^"), "particles/lammps": ("C4", "v")}
-STATE_COLOR = {"ok": "C2", "error_above_tolerance": "C1", "refused": "0.6"}
+               "hydro/enskog": ("C3", "^"), "particles/lammps": ("C4", "v"),
+               "particles/event_driven": ("C5", "P")}
+STATE_COLOR = {"ok": "C2", "error_above_tolerance": "C1", "t0_bias_above_tolerance": "C3", "refused": "0.6"}
 
 
 def style_of(model):
@@ -28,8 +31,11 @@ def model_error(run, name):
         title="Work-precision: error against cost",
         caption=("Each point is one run; its error is relative, against the richest model's finest run "
                  "(the reference, whose own error is estimated from its neighbours one step coarser: "
-                 "dotted line). Circled points are on the Pareto front of their panel: no other run is "
-                 "both cheaper and closer. The dashed line is the tolerance {tolerance}."))
+                 "dotted line). Where the reference is a particle ensemble, its statistical error (the "
+                 "ensemble standard error) is the floor no comparison with it can go below: dash-dotted "
+                 "line, with the σ-aware threshold tolerance + {sigmas}σ dashed in grey. Circled points "
+                 "are on the Pareto front of their panel: no other run is both cheaper and closer. The "
+                 "dashed black line is the tolerance {tolerance}."))
 def fig_work_precision(run):
     names = run.atlas("observables") or []
     runs = [r for r in run.runs() if r.get("status") == "ok"]
@@ -40,6 +46,8 @@ def fig_work_precision(run):
     fig, axes = plt.subplots(rows, cols, figsize=(3.3 * cols, 2.9 * rows), layout="constrained", squeeze=False)
     tol = run.atlas("tolerance")
     floor = run.atlas("reference", "convergence") or {}
+    statistical = run.atlas("reference", "statistical_error") or {}
+    sigmas = run.atlas("sigmas")
     for ax, name in zip(axes.flat, names):
         for model in run.models():
             pts = [(r["wall_seconds"], model_error(r, name), name in (r.get("pareto") or []))
@@ -53,7 +61,12 @@ def fig_work_precision(run):
         if isinstance(tol, (int, float)):
             ax.axhline(tol, color="k", ls="--", lw=0.8)
         f = floor.get(name)
-        if isinstance(f, (int, float)) and f > 0:
+        s = statistical.get(name)
+        if isinstance(s, (int, float)) and s > 0:
+            ax.axhline(s, color="C5", ls="-.", lw=1.0)
+            if isinstance(tol, (int, float)) and isinstance(sigmas, (int, float)):
+                ax.axhline(tol + sigmas * s, color="0.5", ls="--", lw=0.8)
+        elif isinstance(f, (int, float)) and f > 0:
             ax.axhline(f, color="k", ls=":", lw=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -70,11 +83,16 @@ def fig_work_precision(run):
             entries.setdefault(lab, h)
     if entries:
         axes.flat[0].legend(list(entries.values()), list(entries.keys()), fontsize=7, loc="best")
+    ref = run.atlas("reference", "setting") or {}
+    if "cells" in ref:
+        where = f"{ref.get('cells')} cells, step factor {ref.get('step_factor')}"
+    else:
+        where = f"ensemble of {ref.get('ensemble')}"
     measured = [("runs finished", str(len(runs)), None),
-                ("reference", f"{run.atlas('reference', 'setting', 'model')} at "
-                 f"{run.atlas('reference', 'setting', 'cells')} cells, step factor "
-                 f"{run.atlas('reference', 'setting', 'step_factor')}", None)]
-    return Drawn(fig, measured, caption_values={"tolerance": fmt(tol)})
+                ("reference", f"{ref.get('model')} at {where}", None)]
+    for name, v in sorted(statistical.items()):
+        measured.append((f"reference's statistical error: {name}", fmt(v, 3), None))
+    return Drawn(fig, measured, caption_values={"tolerance": fmt(tol), "sigmas": fmt(sigmas)})
 
 
 @figure(file="a2_stability.png", section="atlas", anchor="stability",
@@ -151,3 +169,74 @@ def fig_timeline(run):
     ax2.set_ylabel("largest relative error")
     ax2.legend(fontsize=7)
     return Drawn(fig, measured, caption_values={"tolerance": fmt(tol)})
+
+
+@figure(file="a4_dem_map.png", section="atlas", anchor="dem_map",
+        title="DEM stability and bias map: max_overlap × steps_per_contact against the hard disks",
+        caption=("Left: every LAMMPS run of the atlas (the largest ensemble at each contact setting, adaptive "
+                 "stiffness as in the case), coloured by its state at the tolerance {tolerance}: ok, t0 bias "
+                 "above tolerance (σ-aware against the event-driven hard disks), another observable above "
+                 "tolerance, or how the engine failed; the star is the case's own contact. Right: the soft-contact "
+                 "bias against the event-driven engine at the largest ensemble that ran ({against}), of the Haff "
+                 "t0 and of P/(nT), against md.max_overlap, with one standard error (both ensembles); open "
+                 "markers are runs with the adaptive stiffness flipped."))
+def fig_dem_map(run):
+    dem = run.atlas("dem_map")
+    if not isinstance(dem, dict) or not dem.get("points"):
+        raise Skip("no LAMMPS run in this atlas")
+    pts = dem["points"]
+    d = dem.get("default") or {}
+    own_adaptive = d.get("adaptive_stiffness")
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11.5, 4.3), layout="constrained")
+    main = [p for p in pts if p.get("adaptive_stiffness") == own_adaptive]
+    for k, state in enumerate(sorted({p["state"] for p in main})):
+        sel = [p for p in main if p["state"] == state]
+        ax.scatter([p["max_overlap"] for p in sel], [p["steps_per_contact"] for p in sel], s=70, marker="s",
+                   color=STATE_COLOR.get(state, f"C{4 + k}"), label=state)
+    ax.scatter([d.get("max_overlap")], [d.get("steps_per_contact")], marker="*", s=220, color="k", zorder=5,
+               label="case's own contact")
+    measured = []
+    for b in dem.get("boundaries") or []:
+        if b.get("failed") is not None:
+            measured.append((f"{b['knob']} {b['direction']}",
+                             f"ok to {fmt(b['stable'], 3)}, fails at {fmt(b['failed'], 3)} ({b['failure']})", None))
+        elif b.get("note"):
+            measured.append((f"{b['knob']} {b['direction']}", b["note"], None))
+        else:
+            measured.append((f"{b['knob']} {b['direction']}", f"ok over the grid, to {fmt(b.get('stable'), 3)}", None))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("md.max_overlap (σ)")
+    ax.set_ylabel("md.steps_per_contact")
+    ax.legend(fontsize=7, loc="best")
+    against = dem.get("against") or {}
+    drawn = False
+    for key, label, color in (("t0", "Haff t0", "C0"), ("compressibility", "P/(nT)", "C1")):
+        for adaptive, face in ((own_adaptive, color), (not own_adaptive, "none")):
+            sel = [p for p in pts if p.get("adaptive_stiffness") == adaptive and p.get("steps_per_contact") ==
+                   d.get("steps_per_contact") and p.get(f"{key}_bias") is not None]
+            if not sel:
+                continue
+            sel.sort(key=lambda p: p["max_overlap"])
+            x = np.array([p["max_overlap"] for p in sel], float) * (1.04 if key == "compressibility" else 1.0)
+            y = np.array([p[f"{key}_bias"] for p in sel], float)
+            e = np.array([p.get(f"{key}_bias_error") or 0.0 for p in sel], float)
+            ax2.errorbar(x, y, yerr=e, fmt="o-" if face != "none" else "o", color=color, mfc=face, capsize=3,
+                         label=f"{label}" + ("" if face != "none" else " (adaptive stiffness flipped)"))
+            drawn = True
+            if face != "none":
+                for p in sel:
+                    measured.append((f"{label} bias at max_overlap {fmt(p['max_overlap'], 3)}",
+                                     f"{fmt(100 * p[f'{key}_bias'], 3)} ± {fmt(100 * (p.get(f'{key}_bias_error') or 0), 2)} % "
+                                     f"(ensemble {p['ensemble']}, {fmt(p['wall_seconds'], 3)} s)", None))
+    if not drawn:
+        ax2.text(0.5, 0.5, "no event-driven reference: no bias", ha="center", va="center", transform=ax2.transAxes)
+    tol = run.atlas("tolerance")
+    ax2.axhline(0.0, color="k", lw=0.8)
+    if isinstance(tol, (int, float)):
+        ax2.axhspan(-tol, tol, color="C2", alpha=0.12, lw=0, label="± tolerance")
+    ax2.set_xscale("log")
+    ax2.set_xlabel(f"md.max_overlap (σ), steps_per_contact = {d.get('steps_per_contact')}")
+    ax2.set_ylabel("DEM / hard disks − 1")
+    ax2.legend(fontsize=7, loc="best")
+    return Drawn(fig, measured, caption_values={"tolerance": fmt(tol), "against": against.get("setting", "none")})

@@ -83,13 +83,13 @@ def build_atlas(outdir, strict=False):
     run.figdir = figure_folder(run.outdir)
     figures, skipped, failed = draw_figures("atlas", run, run.figdir, strict)
     rec, ladder, rows, skipped_runs = atlas_tables(run)
-    raw = {k: v for k, v in run.at.items() if k not in ("runs", "stability", "timeline")}
+    raw = {k: v for k, v in run.at.items() if k not in ("runs", "stability", "timeline", "dem_map")}
     write_page(
         run.outdir, ATLAS_TEMPLATE, page_name="atlas.html",
         case=run.atlas("case") or run.outdir.name, status=run.atlas("status"),
         recommendation=rec, ladder=ladder, runs=rows, skipped_runs=skipped_runs,
         observables=run.atlas("observables") or [], times=run.atlas("times") or [],
-        figures=figures, skipped=skipped, failed=failed, raw=json.dumps(raw, indent=2),
+        sigmas=run.atlas("sigmas"), figures=figures, skipped=skipped, failed=failed, raw=json.dumps(raw, indent=2),
         generated=generated_at(), source=str(run.atlas_path),
     )
     return figures, skipped, failed

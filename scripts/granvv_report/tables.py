@@ -352,12 +352,24 @@ def sweep_tables(run):
     return rows, fit_rows, settings
 
 
+def _knobs_text(s):
+    """The cost knobs of an atlas setting or run row, as text ("" for a model without knobs)."""
+    if "cells" in s:
+        return f"{s['cells']} cells, step factor {fmt(s['step_factor'], 3)}"
+    if "max_overlap" in s:
+        return (f"ensemble {s.get('ensemble')}, max_overlap {fmt(s['max_overlap'], 3)}, "
+                f"{s.get('steps_per_contact')} steps per contact, adaptive stiffness "
+                f"{'on' if s.get('adaptive_stiffness') else 'off'}")
+    if "ensemble" in s:
+        return f"ensemble {s['ensemble']}"
+    return ""
+
+
 def _setting_text(s):
     if not isinstance(s, dict):
         return "—"
-    if "cells" in s:
-        return f"{s['model']}, {s['cells']} cells, step factor {fmt(s['step_factor'], 3)}"
-    return s.get("model", "—")
+    knobs = _knobs_text(s)
+    return f"{s.get('model', '—')}, {knobs}" if knobs else s.get("model", "—")
 
 
 def atlas_tables(run):
@@ -369,8 +381,10 @@ def atlas_tables(run):
         cost = rec.get("cost") or {}
         rec_rows.append(("its cost", f"{fmt(cost.get('wall_seconds'), 3)} s, {fmt(cost.get('work'), 3)} "
                                      f"{cost.get('work_unit', '')}"))
+        ref_err = rec.get("reference_statistical_error") or {}
         for k, v in sorted((rec.get("error") or {}).items()):
-            rec_rows.append((f"its error: {k}", fmt(v, 3)))
+            rec_rows.append((f"its error: {k}", fmt(v, 3) if k not in ref_err else
+                             Markup(f"{fmt(v, 3)} (reference's statistical error {fmt(ref_err[k], 2)})")))
         nxt = rec.get("next_rung")
         if isinstance(nxt, dict):
             rec_rows.append(("next rung up", _setting_text(nxt.get("setting")) + ("" if nxt.get("adequate")
@@ -384,12 +398,14 @@ def atlas_tables(run):
               for r in run.atlas("ladder") or []]
     names = run.atlas("observables") or []
     rows = []
-    for r in sorted(run.runs(), key=lambda r: (r.get("model", ""), r.get("cells") or 0, r.get("step_factor") or 0)):
+    order = lambda r: (r.get("model", ""), r.get("cells") or 0, r.get("step_factor") or 0, r.get("ensemble") or 0,
+                       r.get("max_overlap") or 0, r.get("steps_per_contact") or 0, bool(r.get("adaptive_stiffness")))
+    for r in sorted(run.runs(), key=order):
         errs = r.get("model_error") or {}
         worst = max(errs.values()) if errs else None
         num = r.get("numerical_error") or {}
-        rows.append([r.get("model"), r.get("cells", "—"), fmt(r.get("step_factor"), 3) if "step_factor" in r else "—",
-                     r.get("status"), fmt(r.get("wall_seconds"), 3), fmt(r.get("work"), 3),
+        rows.append([r.get("model"), _knobs_text(r) or "—",
+                     r.get("status"), fmt(r.get("wall_seconds"), 3), f"{fmt(r.get('work'), 3)} {r.get('work_unit', '')}",
                      fmt(max(num.values()), 3) if num else "—", fmt(worst, 3) if worst is not None else "—",
                      f"{len(errs)}/{len(names)}", "yes" if r.get("over_resolved") else "",
                      ", ".join(r.get("pareto") or [])])
