@@ -57,6 +57,22 @@ std::vector<double> per_time(const compare::FieldTrack& track, Metric metric) {
   return v;
 }
 
+// The flow by inertia's measures that survive noise, and the central density that does not
+// (CompareOutcome::InertiaMeasure, docs/outputs.md).
+json inertia_measures_summary(const CompareOutcome& out) {
+  const auto series = [](const CompareOutcome::InertiaMeasure& m) {
+    return json{{"md", numbers(m.md)},
+                {"md_error", numbers(m.md_error)},
+                {"hydro", numbers(m.hydro)},
+                {"inertia", numbers(m.inertia)}};
+  };
+  return {{"central_window", out.central_window},
+          {"v_mode", series(out.v_mode)},
+          {"n_mode", series(out.n_mode)},
+          {"window_mass", series(out.window_mass)},
+          {"n_centre", series(out.n_centre)}};
+}
+
 // Growth of each density mode from the first to the last compared time, |n_k(t)| / |n_k(0)|:
 // particles (rms over seeds), hydro, and linear theory from each seed's own t = 0 perturbation.
 json modes_summary(const CompareOutcome& out) {
@@ -174,6 +190,7 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
         {"md_thermal", numbers(out.md_energy_thermal)},
         {"hydro_kinetic", numbers(out.hydro_energy_kinetic)},
         {"md_kinetic", numbers(out.md_energy_kinetic)}}},
+      {"flow_by_inertia", inertia_measures_summary(out)},
       {"density_modes", modes_summary(out)},
       {"monitors_fired_at_parting", out.window.throughout || !out.window.left_at
                                         ? json(nullptr)

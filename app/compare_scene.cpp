@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "compare/ensemble_error_model.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "compare/ensemble_statistics.hpp"
+#include "compare/inertia_measures.hpp"
 #include "compare/model_comparison.hpp"
 #include "compare/profile_measures.hpp"
 #include "compare/verdict.hpp"
@@ -94,6 +96,47 @@ void compare_density_modes(CompareOutcome& out, int modes, const hydro::Closure&
   }
 }
 
+// The four measures of one binned state (n relative to its mean, v scaled), in the order of
+// kInertiaMeasures.
+std::vector<double> inertia_measures(const std::vector<double>& n, const std::vector<double>& v,
+                                     double half_width) {
+  return {compare::sine_mode_amplitude(v, 1), compare::cosine_mode_amplitude(n, 1),
+          compare::central_window_mass(n, half_width), compare::central_density(n)};
+}
+constexpr CompareOutcome::InertiaMeasure CompareOutcome::*kInertiaMeasures[] = {
+    &CompareOutcome::v_mode, &CompareOutcome::n_mode, &CompareOutcome::window_mass,
+    &CompareOutcome::n_centre};
+
+// The flow by inertia's measures for the particles (per member, then mean and error), the
+// hydro and flow by inertia on the bins, at every compared time.
+void compare_inertia_measures(CompareOutcome& out, const MdOutcome& md_out,
+                              const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                              double n0) {
+  out.central_window = compare::kCentralWindowHalfWidth;
+  const double w = out.central_window;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    std::vector<std::vector<double>> members;
+    for (const auto& run : md_out.runs) {
+      if (pairs[i].first >= run.fields.snapshots.size()) continue;
+      const auto& s = run.fields.snapshots[pairs[i].first];
+      std::vector<double> relative;
+      for (double n : s.n) relative.push_back(n / n0);
+      members.push_back(inertia_measures(relative, s.v_x, w));
+    }
+    const auto st = compare::ensemble_statistics(members);
+    const auto& h = out.hydro_on_bins.snapshots[i];
+    const auto hydro = inertia_measures(h.n, h.v_x, w);
+    const auto inertia = inertia_measures(out.inertia_n[i], out.inertia_v[i], w);
+    for (std::size_t m = 0; m < std::size(kInertiaMeasures); ++m) {
+      CompareOutcome::InertiaMeasure& series = out.*kInertiaMeasures[m];
+      series.md.push_back(m < st.mean.size() ? st.mean[m] : kNaN);
+      series.md_error.push_back(m < st.standard_error.size() ? st.standard_error[m] : kNaN);
+      series.hydro.push_back(hydro[m]);
+      series.inertia.push_back(inertia[m]);
+    }
+  }
+}
+
 // The kind of disagreement (compare/verdict.hpp) and the verdict line. The box-mean offset is
 // that of the first field to part, at the time it parted.
 void write_verdict(CompareOutcome& out, const CompareScene& scene) {
@@ -134,7 +177,8 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
   if (s.closures.front() != c.string("hydro.closure")) {
     throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
                       ": the first closure fills the hydro and compare blocks, so it must be "
-                      "hydro.closure = \"" + c.string("hydro.closure") + "\" (list it first)");
+                      "hydro.closure = \"" +
+                      c.string("hydro.closure") + "\" (list it first)");
   }
   // Each closure models the particle scene: its phi0 is md.area_fraction (app/hydro_scene.cpp).
   hydro::ClosureParameters params;
@@ -275,6 +319,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     out.inertia_n_peak.push_back(s ? *std::max_element(s->n.begin(), s->n.end()) : kNaN);
   }
 
+  compare_inertia_measures(out, md_out, pairs, n0);
   if (scene.density_modes > 0 && !pairs.empty()) {
     compare_density_modes(out, scene.density_modes, *closure, md_out, pairs, *continuum.fields, n0);
   }

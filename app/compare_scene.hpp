@@ -71,6 +71,16 @@ struct CompareOutcome {
   // smooth and the time is before its singularity; NaN rows otherwise.
   std::vector<std::vector<double>> inertia_n, inertia_v;
   std::vector<double> inertia_n_peak;
+  // What of the flow by inertia survives noise (compare/inertia_measures.hpp), per output time:
+  // the sin 2 pi x amplitude of v and the cos 2 pi x amplitude of n, the mass within |x| <
+  // central_window, and the density at x = 0. The particles' is the mean over members of each
+  // member's measure, with the error of that mean (NaN with one member); NaN where a side has no
+  // value (inertia past tau).
+  struct InertiaMeasure {
+    std::vector<double> md, md_error, hydro, inertia;
+  };
+  double central_window = 0.0;
+  InertiaMeasure v_mode, n_mode, window_mass, n_centre;
   // Density Fourier modes |n_k|, k = 1..density_modes (rows: times), and the linear theory's
   // growth exponent Re lambda(k) (collision clock) of the fastest branch.
   std::vector<std::vector<double>> hydro_modes, md_modes, md_modes_error, theory_modes;

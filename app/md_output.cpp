@@ -44,6 +44,8 @@ json md_cost_summary(const MdOutcome& out) {
 json md_summary(const MdScene& scene, const MdOutcome& out) {
   const auto& sc = scene.spec.scene;
   const SignalToNoise sn = initial_signal_to_noise(scene);
+  const SignalToNoise gradient = initial_gradient_signal_to_noise(scene);
+  const SignalToNoise mode = initial_mode_signal_to_noise(scene);
   const auto physics = sc.physics();
   long long steps = 0;
   for (const auto& run : out.runs) steps += run.steps;
@@ -97,6 +99,12 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},
       {"signal_to_noise_initial", sn.ratio()},
+      {"noise_gradient_initial", number_or_null(gradient.noise)},
+      {"signal_gradient_initial", gradient.signal},
+      {"signal_to_noise_gradient_initial", number_or_null(gradient.ratio())},
+      {"noise_mode_initial", mode.noise},
+      {"signal_mode_initial", mode.signal},
+      {"signal_to_noise_mode_initial", mode.ratio()},
   };
   block.update(md_cost_summary(out));
   add_engine_details(block, out.engine_details);

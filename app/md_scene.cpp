@@ -117,6 +117,28 @@ SignalToNoise initial_signal_to_noise(const MdScene& scene) {
   return s;
 }
 
+SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  const int k_max = sc.unstable_modes();
+  SignalToNoise s;
+  s.noise = k_max > 0 ? k_max * std::sqrt(k_max / double(sc.particles))
+                      : std::numeric_limits<double>::quiet_NaN();
+  const auto& dv = scene.spec.fields.dv;
+  s.signal = dv ? std::max(0.0, sampled_maximum([&](double x) { return std::abs(dv(x)); })) : 0.0;
+  return s;
+}
+
+SignalToNoise initial_mode_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  constexpr int kSamples = 4096;  // midpoint rule: exact for a single mode
+  double b1 = 0.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double x = -0.5 + (i + 0.5) / kSamples;
+    b1 += 2.0 * scene.spec.fields.v(x) * std::sin(2.0 * M_PI * x) / kSamples;
+  }
+  return {std::abs(b1), std::sqrt(2.0 / double(sc.particles))};
+}
+
 std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
   if (!c.boolean("md.enabled")) return std::nullopt;
   MdScene s;

@@ -46,6 +46,18 @@ struct SignalToNoise {
 };
 SignalToNoise initial_signal_to_noise(const MdScene& scene);
 
+// docs/physics.md §8, the gradient form: the thermal noise of the velocity gradient on the scale
+// of the shortest unstable wavelength l = Lx / k_max (k_max = the scene's unstable modes),
+// (n0 Ly l)^{-1/2} / l in scaled units, against the imposed gradient max|v0'|: how strongly the
+// imposed flow, rather than the noise, seeds the clusters. 0 signal (ratio 0) without a smooth
+// imposed velocity, and NaN noise (ratio NaN) without unstable modes.
+SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene);
+
+// docs/physics.md §8, the mode form: the sin 2 pi x amplitude b1 = 2 <v sin 2 pi x> of the
+// imposed velocity against its thermal noise in N disks at T0, sqrt(2 T0 / (m N)): how clearly
+// the imposed mode as a whole, which averages over every bin, stands out.
+SignalToNoise initial_mode_signal_to_noise(const MdScene& scene);
+
 struct MdOutcome {
   std::vector<md::MdRunResult> runs;
   std::string engine;
