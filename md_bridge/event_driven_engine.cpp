@@ -25,6 +25,10 @@ constexpr double kCellMargin = 1e-9;
 // that neighbours stay near each other in memory as the gas mixes (a disk crosses a cell about
 // every event).
 constexpr double kEventsPerReorder = 1.0;
+// Cell crossings allowed per collision of the md.max_collision_rate budget: a dilute gas makes
+// about 4 events per collision at phi = 0.05 and about 30 at phi = 0.01 (mean free path over
+// cell size), so a segment beyond this many events is a loop of crossings, not a gas.
+constexpr double kEventsPerBudgetedCollision = 100.0;
 
 double required_setting(const EngineSettings& settings, const std::string& key) {
   const auto found = settings.find(key);
@@ -264,6 +268,7 @@ double EventDrivenEngine::advance_to(double t) {
   tally_.begin(disks_.size());
   const double n = double(disks_.size());
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
+  const long long events_at_begin = events_;
   while (calendar_.next_time() <= t) {
     if (double(events_ - ordered_at_) > kEventsPerReorder * n) order_by_cell();
     const int i = calendar_.next();
@@ -287,6 +292,16 @@ double EventDrivenEngine::advance_to(double t) {
       }
     } else {
       cross(i, axis, now);
+      if (double(events_ - events_at_begin) > kEventsPerBudgetedCollision * budget) {
+        std::ostringstream why;
+        why << "event-driven engine: " << events_ - events_at_begin << " events from t = " << begin
+            << " to " << now << " with " << segment_collisions_ << " collisions of "
+            << disks_.size() << " disks: disks cross cells without colliding, beyond "
+            << kEventsPerBudgetedCollision
+            << " events per collision that md.max_collision_rate = " << options_.max_collision_rate
+            << " allows (an engine fault; please report)";
+        throw std::runtime_error(why.str());
+      }
     }
   }
   t_ = t;
