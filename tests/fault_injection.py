@@ -356,7 +356,9 @@ class Mpi(FolderState):
     def test_a_write_failure_on_rank_0_ends_every_rank(self):
         # Without a comparison the hydro runs first and results.h5 is written before the
         # collective particle run: rank 1 must not enter it alone.
-        with Mount(self.tmp / "disk", "size=40k") as m:
+        # 64 kB: room for case.toml and run.log (13 kB each with every resolved key) and the
+        # failure's summary, not for the 4000-cell results.h5.
+        with Mount(self.tmp / "disk", "size=64k") as m:
             self.assertTrue(m.ok)
             d = m.where / "out"
             r = self.mpirun(MD_QUICK + ["--set", "compare.enabled=false", "--set", "hydro.cells=4000",
