@@ -15,6 +15,7 @@
 
 #include "app/atlas_analysis.hpp"
 #include "app/atlas_particles.hpp"
+#include "app/atlas_power.hpp"
 #include "app/atlas_runs.hpp"
 #include "app/atomic_file.hpp"
 #include "app/case_config.hpp"
@@ -26,6 +27,7 @@
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/summary.hpp"
+#include "atlas/detectable_error.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/stability_search.hpp"
 #include "atlas/work_precision.hpp"
@@ -147,6 +149,7 @@ struct Grid {
   std::vector<int> ensembles;  // the event-driven engine's
   std::vector<double> max_overlaps;
   std::vector<int> steps_per_contacts;
+  std::vector<double> injected_errors;  // the comparison power's eps
 };
 
 Grid grid_of(const CaseConfig& c, const AtlasScene& scene) {
@@ -175,6 +178,8 @@ Grid grid_of(const CaseConfig& c, const AtlasScene& scene) {
       }
     }
   }
+  g.injected_errors = c.reals("atlas.injected_errors");
+  if (g.injected_errors.empty()) g.injected_errors = atlas::default_injected_errors();
   return g;
 }
 
@@ -184,18 +189,6 @@ double estimate(const AtlasSetting& s, const AtlasRun& pilot, int case_cells) {
   if (!is_hydro(s.model)) return 0.0;
   const double c = double(s.cells) / case_cells;
   return std::max(pilot.cost.wall_seconds, 1e-3) * std::max(c * c, c) / s.step_factor;
-}
-
-json setting_json(const AtlasSetting& s) {
-  json j = {{"model", s.model}};
-  if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
-  if (is_particles(s.model)) j["ensemble"] = s.ensemble;
-  if (is_lammps(s.model)) {
-    j["max_overlap"] = s.max_overlap;
-    j["steps_per_contact"] = s.steps_per_contact;
-    j["adaptive_stiffness"] = s.adaptive_stiffness;
-  }
-  return j;
 }
 
 json errors_json(const std::map<std::string, double>& e) {
@@ -342,6 +335,63 @@ json skipped_for_budget(const AtlasSetting& s, double estimate, double share, do
                          format_real(budget) + ")"}};
 }
 
+// The comparison power within its share of the budget (app/atlas_power.hpp): the eps grid is
+// thinned to every other value until its hydro runs fit, and skipped with the reason if even
+// two values do not.
+json comparison_power_within(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
+                             const std::string& reference_model, std::vector<double> epsilons,
+                             BudgetShares& budget, int jobs, AtlasRunner& runner,
+                             double total_budget) {
+  const AtlasRun* unperturbed = nullptr;
+  std::vector<const AtlasRun*> particle_runs;
+  for (const auto& r : runs) {
+    if (r.setting.model == "hydro/" + scene.closure && r.setting.cells == scene.case_cells &&
+        r.setting.step_factor == 1.0) {
+      unperturbed = &r;
+    }
+    const bool own_contact = !is_lammps(reference_model) ||
+                             (r.setting.max_overlap == scene.case_max_overlap &&
+                              r.setting.steps_per_contact == scene.case_steps_per_contact &&
+                              r.setting.adaptive_stiffness == scene.case_adaptive_stiffness);
+    if (r.setting.model == reference_model && r.status == "ok" && r.fields && own_contact) {
+      particle_runs.push_back(&r);
+    }
+  }
+  std::stable_sort(particle_runs.begin(), particle_runs.end(),
+                   [](const AtlasRun* a, const AtlasRun* b) {
+                     return a->setting.ensemble < b->setting.ensemble;
+                   });
+  const double share = budget.share();
+  budget.done();
+  if (!unperturbed || unperturbed->status != "ok") {
+    return {{"skipped", "the case's own hydro (hydro/" + scene.closure +
+                            ") did not finish, so there is nothing to inject errors into"}};
+  }
+  const double each = std::max(unperturbed->cost.wall_seconds, 1e-3);
+  const std::size_t per_eps = comparison_power_settings(scene, {1.0}).size();
+  auto estimate_of = [&](std::size_t n) { return each * double(per_eps * n) / jobs; };
+  int thinned = 0;
+  while (epsilons.size() > 2 && estimate_of(epsilons.size()) > share) {
+    std::vector<double> kept;
+    for (std::size_t i = 0; i < epsilons.size(); i += 2) kept.push_back(epsilons[i]);
+    epsilons = kept;
+    ++thinned;
+  }
+  if (estimate_of(epsilons.size()) > share) {
+    return {{"skipped", "its " + std::to_string(per_eps * epsilons.size()) +
+                            " hydro runs, estimated " + format_real(estimate_of(epsilons.size())) +
+                            " s, would pass its share of the budget (" + format_real(share) +
+                            " s of --budget " + format_real(total_budget) + ")"}};
+  }
+  const std::vector<AtlasSetting> settings = comparison_power_settings(scene, epsilons);
+  const std::vector<AtlasRun> hydro_runs =
+      runner.run(settings, std::vector<double>(settings.size(), each));
+  budget.spend(estimate_of(epsilons.size()));
+  json power = comparison_power(scene, *unperturbed, hydro_runs, particle_runs, epsilons);
+  power["thinned"] = thinned;  // times the default grid was halved to fit the budget
+  return power;
+}
+
 }  // namespace
 
 int atlas_command(const AtlasOptions& options) {
@@ -380,6 +430,9 @@ int atlas_command(const AtlasOptions& options) {
     scene.case_max_compression = hydro.control.time_step.max_compression;
     scene.area_fraction = hydro.area_fraction;
     scene.sigmas = config.real("compare.sigmas");
+    scene.closure = hydro.closure;
+    scene.agreement_fraction = config.real("compare.agreement_fraction");
+    scene.transverse = hydro.transverse;
     if (scene.particles) {
       // Every model is compared on the particles' bins: their ensemble mean has its error there.
       const int md_bins = config.int_value("md.bins");
@@ -400,6 +453,7 @@ int atlas_command(const AtlasOptions& options) {
       scene.md_t_haff =
           md::haff_time_md(md->spec.scene, md::enskog_chi(md->spec.scene.area_fraction));
       scene.t0_theory = md->spec.scene.scaled_time(scene.md_t_haff);
+      scene.signal_to_noise = initial_signal_to_noise(*md).ratio();
     }
     initial_type = hydro.initial.type;
     scene.has_inertia_reference = hydro::inertia_reference(hydro.initial).has_value();
@@ -461,12 +515,15 @@ int atlas_command(const AtlasOptions& options) {
       runs.push_back(runner.run_one(s));
     }
   }
-  BudgetShares budget(options.budget, int(hydro_models.size() + particle_models.size()));
+  // The families that share the budget: each hydro, each particle engine and, in a particle
+  // scene, the comparison power.
+  BudgetShares budget(options.budget, int(hydro_models.size() + particle_models.size() +
+                                          (particle_models.empty() ? 0 : 1)));
   std::vector<AtlasSetting> planned;
   std::vector<double> estimates;
   for (const auto& model : hydro_models) {
     const double share = budget.share();
-    const AtlasRun pilot = runner.run_one({model, scene.case_cells, 1.0});
+    const AtlasRun pilot = runner.run_one(hydro_setting(model, scene.case_cells, 1.0));
     runs.push_back(pilot);
     double planned_seconds = pilot.cost.wall_seconds;
     // 3. The grid within the budget: the finest corner (the reference) first, then the cheapest.
@@ -474,10 +531,10 @@ int atlas_command(const AtlasOptions& options) {
     for (int c : grid.cells) {
       for (double f : grid.factors) {
         if (c == scene.case_cells && f == 1.0) continue;
-        grid_settings.push_back({model, c, f});
+        grid_settings.push_back(hydro_setting(model, c, f));
       }
     }
-    const AtlasSetting finest{model, grid.cells.back(), grid.factors.front()};
+    const AtlasSetting finest = hydro_setting(model, grid.cells.back(), grid.factors.front());
     std::stable_sort(
         grid_settings.begin(), grid_settings.end(),
         [&](const AtlasSetting& a, const AtlasSetting& b) {
@@ -615,6 +672,15 @@ int atlas_command(const AtlasOptions& options) {
     }
   }
 
+  // The comparison power: the case's own hydro with injected model errors, judged side by side
+  // against every run of the reference engine (its ensemble sizes are the particle cost axis).
+  json power = nullptr;
+  if (particle_reference) {
+    power = comparison_power_within(scene, runs, richest, grid.injected_errors, budget, jobs,
+                                    runner, options.budget);
+    if (interruption_signal()) return interrupted();
+  }
+
   // 5. Errors, fronts, recommendation.
   std::vector<ObservableErrors> numerical(runs.size()), model_error(runs.size());
   std::vector<atlas::Candidate> candidates;
@@ -735,11 +801,11 @@ int atlas_command(const AtlasOptions& options) {
       const bool cells = std::string(push.knob) == "cells";
       auto probe = [&](double knob) {
         if (interruption_signal()) return std::string("interrupted");
-        return state_of(
-            {model, cells ? int(std::lround(knob)) : scene.case_cells, cells ? 1.0 : knob});
+        return state_of(hydro_setting(model, cells ? int(std::lround(knob)) : scene.case_cells,
+                                      cells ? 1.0 : knob));
       };
       const double start_knob = cells ? scene.case_cells : 1.0;
-      if (!state_of({model, scene.case_cells, 1.0}).empty()) {
+      if (!state_of(hydro_setting(model, scene.case_cells, 1.0)).empty()) {
         boundaries.push_back({{"knob", push.knob},
                               {"note",
                                "the case's own setting already fails against the "
@@ -886,6 +952,7 @@ int atlas_command(const AtlasOptions& options) {
       {"stability", stability},
       {"dem_map", dem},
       {"timeline", timeline},
+      {"comparison_power", power},
       {"skipped", skipped},
       {"runs_made", runner.made()},
       {"run_seconds", runner.spent()},

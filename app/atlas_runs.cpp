@@ -43,6 +43,14 @@ std::string text_hash(const std::string& text) {
 
 }  // namespace
 
+AtlasSetting hydro_setting(const std::string& model, int cells, double step_factor) {
+  AtlasSetting s;
+  s.model = model;
+  s.cells = cells;
+  s.step_factor = step_factor;
+  return s;
+}
+
 bool is_hydro(const std::string& model) {
   return model.rfind("hydro/", 0) == 0;
 }
@@ -296,7 +304,22 @@ std::string describe(const AtlasSetting& s) {
   } else if (is_particles(s.model)) {
     std::snprintf(knobs, sizeof knobs, " ensemble=%d", s.ensemble);
   }
-  return s.model + knobs;
+  std::string text = s.model + knobs;
+  if (!s.injected.empty()) text += " " + s.injected + "=" + format_real(s.injected_factor);
+  return text;
+}
+
+json setting_json(const AtlasSetting& s) {
+  json j = {{"model", s.model}};
+  if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
+  if (is_particles(s.model)) j["ensemble"] = s.ensemble;
+  if (is_lammps(s.model)) {
+    j["max_overlap"] = s.max_overlap;
+    j["steps_per_contact"] = s.steps_per_contact;
+    j["adaptive_stiffness"] = s.adaptive_stiffness;
+  }
+  if (!s.injected.empty()) j[s.injected] = s.injected_factor;
+  return j;
 }
 
 std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& s) {
@@ -308,6 +331,9 @@ std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasS
     sets.push_back("hydro.dt_max=" + format_real(scene.case_dt_max * s.step_factor));
     sets.push_back("hydro.max_compression=" +
                    format_real(scene.case_max_compression * s.step_factor));
+    if (!s.injected.empty()) {
+      sets.push_back("hydro." + s.injected + "=" + format_real(s.injected_factor));
+    }
   } else if (is_particles(s.model)) {
     sets.push_back("md.engine=" + toml_quoted(s.model.substr(10)));
     sets.push_back("md.ensemble=" + std::to_string(s.ensemble));

@@ -5,6 +5,7 @@
 // budget, an interrupted atlas) only adds runs.
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,15 +29,26 @@ struct AtlasSetting {
   double max_overlap = 0.0;
   int steps_per_contact = 0;
   bool adaptive_stiffness = false;
+  // An injected model error of the hydro (the comparison power): the key of one transport
+  // factor (hydro/transport_factors.hpp: "viscosity_factor", "conductivity_factor",
+  // "cooling_factor") and the factor set on it; empty for every other run.
+  std::string injected;
+  double injected_factor = 1.0;
 };
+
+// A hydro's setting: its model, cells and step factor.
+AtlasSetting hydro_setting(const std::string& model, int cells, double step_factor);
 
 bool is_hydro(const std::string& model);
 bool is_particles(const std::string& model);
 // The soft-contact engine, whose contact knobs the atlas sweeps.
 bool is_lammps(const std::string& model);
 
-// "hydro/dilute cells=500 step_factor=1", "particles/event_driven ensemble=16", "haff_ode".
+// "hydro/dilute cells=500 step_factor=1", "particles/event_driven ensemble=16", "haff_ode",
+// "hydro/dilute cells=500 step_factor=1 viscosity_factor=1.1".
 std::string describe(const AtlasSetting& setting);
+// The setting as atlas.json gives it: the model and its knobs.
+nlohmann::json setting_json(const AtlasSetting& setting);
 
 // What the atlas keeps of a run.
 struct AtlasRun {
@@ -85,6 +97,13 @@ struct AtlasScene {
   double md_t_end = 0.0, md_t_haff = 0.0;  // md.t_end and the kinetic-theory Haff time, MD units
   double t0_theory = 0.0;  // the Enskog kinetic-theory Haff time (with chi), scaled units
   double sigmas = 3.0;     // compare.sigmas: the allowance of σ-aware adequacy
+  // What the side-by-side comparison of the comparison power needs: the case's own closure,
+  // compare.agreement_fraction, the particles' initial signal-to-noise (app/md_scene.hpp) and
+  // whether the hydro carries v_y (hydro.transverse_velocity).
+  std::string closure;
+  double agreement_fraction = 0.0;
+  double signal_to_noise = 0.0;
+  bool transverse = false;
   bool has_inertia_reference = false;
 };
 

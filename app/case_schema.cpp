@@ -248,6 +248,9 @@ std::vector<KeySpec> rows_without_initial() {
        "LAMMPS md.max_overlap values ([] = md.max_overlap times 1/2, 1, 2, 5, 10)"},
       {"atlas.steps_per_contacts", kIntegers, kEmpty, increasing(closed_closed(10, 1e4)),
        "LAMMPS md.steps_per_contact values ([] = md.steps_per_contact times 1/3, 1/2, 1, 2)"},
+      {"atlas.injected_errors", kReals, kEmpty, increasing(open_closed(0, 99)),
+       "relative model errors eps injected into the hydro for the comparison power, each "
+       "transport factor times and over (1 + eps) ([] = 0.01 * 2^(k/2), k = 0..16)"},
   };
 }
 

@@ -17,6 +17,7 @@
 #include "compare/inertia_measures.hpp"
 #include "compare/model_comparison.hpp"
 #include "compare/profile_measures.hpp"
+#include "compare/side_by_side.hpp"
 #include "compare/verdict.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
@@ -137,22 +138,15 @@ void compare_inertia_measures(CompareOutcome& out, const MdOutcome& md_out,
   }
 }
 
-// The kind of disagreement (compare/verdict.hpp) and the verdict line. The box-mean offset is
-// that of the first field to part, at the time it parted.
-void write_verdict(CompareOutcome& out, const CompareScene& scene) {
-  if (!out.window.throughout && out.window.left_at) {
-    const auto k = std::find(out.t.begin(), out.t.end(), *out.window.left_at) - out.t.begin();
-    const fields::FieldColumn& c = fields::field_column(out.window.first_out);
-    const fields::FieldSnapshot &h = out.hydro_on_bins.snapshots[k],
-                                &m = out.md_on_bins.snapshots[k];
-    out.offset_sigmas = compare::box_mean_offset(h.*c.values, m.*c.values, m.*c.standard_error);
-  }
-  const compare::Disagreement kind = compare::classify_disagreement(
-      out.window.throughout, out.signal_to_noise, out.offset_sigmas, scene.verdict_rule);
-  out.disagreement = compare::disagreement_name(kind);
+// The verdict line of a judgement (compare/side_by_side.hpp).
+void write_verdict(CompareOutcome& out, const CompareScene& scene,
+                   const compare::SideBySide& judged) {
+  out.window = judged.window;
+  out.offset_sigmas = judged.offset_sigmas;
+  out.disagreement = compare::disagreement_name(judged.kind);
   out.verdict =
       compare::verdict_sentence(out.window, out.t.empty() ? kNaN : out.t.back(), scene.sigmas,
-                                out.signal_to_noise, out.offset_sigmas, kind);
+                                out.signal_to_noise, out.offset_sigmas, judged.kind);
 }
 
 }  // namespace
@@ -272,13 +266,14 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   const fields::ModelResult particles = particle_result(md, md_out, mean.fields);
   const fields::ModelResult continuum = hydro_result(hydro, hydro_out, bins);
   // The output times both reached: each particle snapshot against the hydro's at that time.
-  const auto pairs = compare::common_snapshots(*particles.fields, *continuum.fields);
-
   std::vector<std::string> names = {"n", "v_x", "T"};
   if (hydro.transverse) names.insert(names.begin() + 2, "v_y");
-  const auto tracks = compare::compare_field_series(*particles.fields, *continuum.fields, pairs,
-                                                    names, scene.sigmas);
-  for (const auto& track : tracks) {
+  out.signal_to_noise = initial_signal_to_noise(md).ratio();
+  const compare::SideBySide judged = compare::judge_side_by_side(
+      *particles.fields, *continuum.fields, names, scene.sigmas, scene.agreement_fraction,
+      out.signal_to_noise, scene.verdict_rule);
+  const auto& pairs = judged.pairs;
+  for (const auto& track : judged.tracks) {
     FieldComparison f;
     f.name = track.field;
     f.track = track;
@@ -324,9 +319,7 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
     compare_density_modes(out, scene.density_modes, *closure, md_out, pairs, *continuum.fields, n0);
   }
 
-  out.window = compare::agreement_window(out.t, tracks, scene.agreement_fraction);
-  out.signal_to_noise = initial_signal_to_noise(md).ratio();
-  write_verdict(out, scene);
+  write_verdict(out, scene, judged);
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "atlas/detectable_error.hpp"
 #include "atlas/particle_cost.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/relative_bias.hpp"
@@ -43,9 +44,9 @@ TEST(AtlasPieces, RelativeErrors) {
 
 TEST(AtlasPieces, CheapestAdequateNeedsEveryObservable) {
   std::vector<atlas::Candidate> c(3);
-  c[0] = {0.1, {{"a", 0.5}}};    // cheap, but wrong
-  c[1] = {0.2, {{"a", 0.001}}};  // right on a, silent on b: not adequate for b
-  c[2] = {0.3, {{"a", 0.001}, {"b", 0.002}}};
+  c[0] = {0.1, {{"a", 0.5}}, {}};    // cheap, but wrong
+  c[1] = {0.2, {{"a", 0.001}}, {}};  // right on a, silent on b: not adequate for b
+  c[2] = {0.3, {{"a", 0.001}, {"b", 0.002}}, {}};
   EXPECT_EQ(atlas::cheapest_adequate(c, {"a"}, 0.01, 3.0), std::optional<std::size_t>(1));
   EXPECT_EQ(atlas::cheapest_adequate(c, {"a", "b"}, 0.01, 3.0), std::optional<std::size_t>(2));
   EXPECT_FALSE(atlas::cheapest_adequate(c, {"a", "b"}, 1e-4, 3.0).has_value());
@@ -115,6 +116,38 @@ TEST(AtlasPieces, BoundarySearchBracketsAKnownThreshold) {
   EXPECT_TRUE(none.failure.empty());
   EXPECT_DOUBLE_EQ(none.stable, 0.125);
   EXPECT_THROW(atlas::find_stability_boundary(6.0, 2.0, 3, 2, probe), std::invalid_argument);
+}
+
+TEST(AtlasPieces, SmallestDetectableErrorIsWhereCatchingStaysOn) {
+  const std::vector<double> eps = {0.01, 0.02, 0.04, 0.08, 0.16};
+  const std::vector<bool> all(5, true);
+  // Caught from 0.04 up; a lone catch at 0.01 (noise) does not count, since 0.02 is missed.
+  EXPECT_EQ(atlas::smallest_detectable(eps, {true, false, true, true, true}, all), 0.04);
+  // A run that did not finish is passed over: 0.08 failed, 0.04 and 0.16 caught.
+  EXPECT_EQ(atlas::smallest_detectable(eps, {false, false, true, false, true},
+                                       {true, true, true, false, true}),
+            0.04);
+  // The largest finished eps missed: nothing is detectable on this grid.
+  EXPECT_FALSE(atlas::smallest_detectable(eps, {true, true, true, true, false}, all));
+  EXPECT_THROW(atlas::smallest_detectable({0.1, 0.05}, {true, true}, {true, true}),
+               std::invalid_argument);
+  const auto grid = atlas::default_injected_errors();
+  EXPECT_EQ(grid.size(), 17u);
+  EXPECT_NEAR(grid.back(), 2.56, 1e-12);
+}
+
+TEST(AtlasPieces, AnInjectedErrorIsCaughtOnlyBeyondTheUnperturbedDisagreement) {
+  const atlas::JudgedHydro agrees{true, false, true, 3.0};
+  const atlas::JudgedHydro parts_at_2{true, true, false, 2.0};
+  const atlas::JudgedHydro parts_at_1{true, true, false, 1.0};
+  const atlas::JudgedHydro noise_at_1{true, false, false, 1.0};
+  const atlas::JudgedHydro failed{};
+  EXPECT_TRUE(atlas::catches_injected_error(parts_at_2, agrees));
+  EXPECT_FALSE(atlas::catches_injected_error(noise_at_1, agrees));     // noise is not a model error
+  EXPECT_TRUE(atlas::catches_injected_error(parts_at_1, parts_at_2));  // it parts earlier
+  EXPECT_FALSE(atlas::catches_injected_error(parts_at_2, parts_at_2));  // no earlier than without
+  EXPECT_FALSE(atlas::catches_injected_error(failed, agrees));
+  EXPECT_FALSE(atlas::catches_injected_error(parts_at_1, failed));
 }
 
 TEST(AtlasPieces, InertiaCrossingTimeOfTheSingleModeIsExact) {
@@ -233,6 +266,27 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
   // The hard disks' P/(nT) from their collision virial is near Enskog's 1 + 2 phi chi = 1.10
   // at phi = 0.05 (its statistical error at 8 x 300 disks is below 1 %; 3 % allows 3 sigma).
   EXPECT_NEAR(dem["against"]["compressibility"].get<double>(), 1.10, 0.03);
+  // Comparison power: a uniform gas has no gradients, so the hydro's viscosity and conductivity
+  // can be wrong by any factor without a trace, while its cooling rate shows in T. Each of the
+  // three event-driven runs (1, 2 and 8 members) is a particle cost.
+  const json& power = a["comparison_power"];
+  ASSERT_TRUE(power.is_object()) << a.dump();
+  ASSERT_EQ(power["particles"].size(), 3u) << power.dump();
+  for (const auto& row : power["particles"]) {
+    for (const char* key : {"viscosity_factor", "conductivity_factor"}) {
+      for (const char* d : {"up", "down"}) {
+        EXPECT_TRUE(row["detectable"][key][d].is_null()) << key << " " << d << row.dump();
+      }
+    }
+  }
+  // 8 members x 300 disks measure T to about 1 %; the cooling over t = 10 of t0 = 86 moves T by
+  // 0.23 eps, so an eps of order 0.1 to 1 is caught, and within the grid (to 2.56) both ways.
+  const json& largest = power["particles"].back();
+  EXPECT_EQ(largest["setting"]["ensemble"], 8);
+  for (const char* d : {"up", "down"}) {
+    ASSERT_TRUE(largest["detectable"]["cooling_factor"][d].is_number()) << largest.dump();
+    EXPECT_LT(largest["detectable"]["cooling_factor"][d].get<double>(), 2.56);
+  }
   // A second atlas takes every run from the cache.
   const auto again = run_cli(args);
   ASSERT_EQ(again.exit_code, 0) << again.output;

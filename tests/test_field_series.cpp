@@ -209,6 +209,10 @@ TEST(EnsembleFieldSeries, MeanAndStandardErrorOfTwoMembersByHand) {
                          {},
                          {},
                          {10, 30},
+                         {},
+                         {},
+                         {},
+                         {},
                          {}});
   b.snapshots.push_back({0.0,
                          "output",
@@ -222,6 +226,10 @@ TEST(EnsembleFieldSeries, MeanAndStandardErrorOfTwoMembersByHand) {
                          {},
                          {},
                          {30, 30},
+                         {},
+                         {},
+                         {},
+                         {},
                          {}});
   const FieldSeries e = granvv::compare::ensemble_field_series({a, b});
   ASSERT_EQ(e.snapshots.size(), 1u);

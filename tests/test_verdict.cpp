@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "compare/field_metrics.hpp"
+#include "compare/side_by_side.hpp"
 #include "compare/verdict.hpp"
 
 namespace {
@@ -122,6 +123,49 @@ TEST(Verdict, SentenceForEachWindowAndKind) {
   EXPECT_EQ(verdict_sentence(AgreementWindow{}, kNaN, 3.0, 1.0 / 3.0, 0.0, Disagreement::noise)
                 .substr(0, 43),
             "no common output time [signal/noise 0.3333:");
+}
+
+// The side-by-side judgement end to end on series built by hand: 8 bins, the particles' T = 1
+// with a standard error of 0.01 in every bin at t = 0, 1, 2; a hydro equal to them at t = 0 and
+// 1 and 5 % hotter everywhere at t = 2 (5 standard errors, in every bin) parts at t = 2, and
+// its box mean is off by 5 sqrt(8) = 14 errors of that mean: a model disagreement, without
+// any imposed signal. The same hydro with an offset of 0.5 % (0.5 errors) agrees throughout.
+TEST(SideBySide, AUniformOffsetBeyondTheErrorsIsTheModels) {
+  using granvv::fields::FieldSeries;
+  using granvv::fields::FieldSnapshot;
+  auto series = [](double hot_at_2, bool errors) {
+    FieldSeries f = FieldSeries::on_bins(-0.5, 1.0, 8);
+    for (double t : {0.0, 1.0, 2.0}) {
+      FieldSnapshot s;
+      s.t = t;
+      s.label = "output";
+      for (int b = 0; b < 8; ++b) s.x.push_back(-0.5 + (b + 0.5) / 8);
+      s.n.assign(8, 1.0);
+      s.v_x.assign(8, 0.0);
+      s.T.assign(8, t == 2.0 ? 1.0 + hot_at_2 : 1.0);
+      if (errors) {
+        s.n_stderr.assign(8, 0.01);
+        s.v_x_stderr.assign(8, 0.01);
+        s.T_stderr.assign(8, 0.01);
+      }
+      f.snapshots.push_back(s);
+    }
+    return f;
+  };
+  const FieldSeries particles = series(0.0, true);
+  const VerdictRule rule{kClearSignalToNoise, 3.0};
+  const auto parted = granvv::compare::judge_side_by_side(particles, series(0.05, false),
+                                                          {"n", "v_x", "T"}, 3.0, 0.9, 0.0, rule);
+  EXPECT_EQ(parted.t, (std::vector<double>{0.0, 1.0, 2.0}));
+  EXPECT_FALSE(parted.window.throughout);
+  EXPECT_EQ(parted.window.until, 1.0);
+  EXPECT_EQ(parted.window.first_out, "T");
+  EXPECT_NEAR(parted.offset_sigmas, 5.0 * std::sqrt(8.0), 1e-9);
+  EXPECT_EQ(parted.kind, Disagreement::model_box_offset);
+  const auto close = granvv::compare::judge_side_by_side(particles, series(0.005, false),
+                                                         {"n", "v_x", "T"}, 3.0, 0.9, 0.0, rule);
+  EXPECT_TRUE(close.window.throughout);
+  EXPECT_EQ(close.kind, Disagreement::none);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 """Figures of an atlas (atlas.json of `granvv atlas`, docs/atlas.md): a1 work-precision diagrams, one
 panel per judged observable; a2 the stability map of each hydro over cells and step factor; a3 the
 ladder timeline; a4 the DEM stability and bias map over max_overlap x steps_per_contact, against the
-event-driven hard disks. Errors are relative, against the richest model's finest run; costs in wall
+event-driven hard disks; a5 the comparison power, the smallest injected model error of the hydro that the
+side-by-side comparison catches, against the particles' cost. Errors are relative, against the richest model's finest run; costs in wall
 seconds."""
 import math
 
@@ -240,3 +241,65 @@ def fig_dem_map(run):
     ax2.set_ylabel("DEM / hard disks − 1")
     ax2.legend(fontsize=7, loc="best")
     return Drawn(fig, measured, caption_values={"tolerance": fmt(tol), "against": against.get("setting", "none")})
+
+
+POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "cooling_factor": "C3"}
+
+
+@figure(file="a5_comparison_power.png", section="atlas", anchor="comparison_power",
+        title="Comparison power: the smallest model error the particles can catch",
+        caption=("The hydro at the case's own setting ({hydro}) with one transport coefficient multiplied by "
+                 "(1 + ε) (solid) or divided by it (dashed), judged side by side against each particle run of the "
+                 "reference engine as granvv run judges its comparison (signal/noise {sn}). A point is the "
+                 "smallest ε from which every larger ε on the grid ({grid}) is flagged as a model disagreement "
+                 "that the unperturbed hydro does not have; a triangle at the top means no ε up to the largest "
+                 "was caught. The particle cost is N × ensemble, the disks simulated ({per} per member)."))
+def fig_comparison_power(run):
+    power = run.atlas("comparison_power")
+    if not isinstance(power, dict) or not power.get("particles"):
+        why = power.get("skipped") if isinstance(power, dict) else None
+        raise Skip(why or "no particle reference in this atlas: no comparison power")
+    per = power.get("disks_per_member") or 1
+    rows = sorted(power["particles"], key=lambda r: (r.get("setting") or {}).get("ensemble") or 0)
+    cost = {id(r): per * ((r.get("setting") or {}).get("ensemble") or 1) for r in rows}
+    eps = power.get("epsilons") or []
+    top = max(eps) * 1.6 if eps else 1.0
+    fig, ax = plt.subplots(figsize=(6.8, 4.3), layout="constrained")
+    measured = []
+    for key in power.get("keys") or []:
+        color = POWER_COLOR.get(key, "k")
+        for direction, ls in (("up", "-"), ("down", "--")):
+            x, y, missed = [], [], []
+            for r in rows:
+                d = ((r.get("detectable") or {}).get(key) or {}).get(direction)
+                if d is None:
+                    missed.append(cost[id(r)])
+                else:
+                    x.append(cost[id(r)])
+                    y.append(d)
+            label = f"{key.replace('_factor', '')} {'×' if direction == 'up' else '÷'} (1 + ε)"
+            if x:
+                ax.plot(x, y, ls=ls, marker="o", color=color, mfc=color if direction == "up" else "none", label=label)
+            if missed:
+                ax.scatter(missed, [top] * len(missed), marker="^", color=color,
+                           facecolors=color if direction == "up" else "none", label=None if x else label + " (none caught)")
+            for r in rows:
+                d = ((r.get("detectable") or {}).get(key) or {}).get(direction)
+                what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
+                members = (r.get("setting") or {}).get("ensemble")
+                measured.append((f"{label}, {members} members ({fmt(r['wall_seconds'], 3)} s)", what, None))
+    for r in rows:
+        base = r.get("unperturbed") or {}
+        members = (r.get("setting") or {}).get("ensemble")
+        measured.append((f"unperturbed hydro against {members} members",
+                         f"{base.get('disagreement')}, agreed until t = {fmt(base.get('agreed_until'), 4)}", None))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particle cost: N × ensemble (disks)")
+    ax.set_ylabel("smallest detectable ε")
+    ax.legend(fontsize=7, loc="best")
+    hydro = power.get("hydro") or {}
+    return Drawn(fig, measured, caption_values={
+        "hydro": f"{hydro.get('model')} cells={hydro.get('cells')}",
+        "sn": fmt(power.get("signal_to_noise"), 3), "per": per,
+        "grid": f"{fmt(min(eps), 3)} to {fmt(max(eps), 3)}, {len(eps)} values" if eps else "empty"})

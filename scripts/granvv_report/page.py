@@ -83,7 +83,7 @@ def build_atlas(outdir, strict=False):
     run.figdir = figure_folder(run.outdir)
     figures, skipped, failed = draw_figures("atlas", run, run.figdir, strict)
     rec, ladder, rows, skipped_runs = atlas_tables(run)
-    raw = {k: v for k, v in run.at.items() if k not in ("runs", "stability", "timeline", "dem_map")}
+    raw = {k: v for k, v in run.at.items() if k not in ("runs", "stability", "timeline", "dem_map", "comparison_power")}
     write_page(
         run.outdir, ATLAS_TEMPLATE, page_name="atlas.html",
         case=run.atlas("case") or run.outdir.name, status=run.atlas("status"),
