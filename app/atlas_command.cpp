@@ -877,7 +877,8 @@ int atlas_command(const AtlasOptions& options) {
                         {"error", errs},
                         {"reference_statistical_error", reference_errs},
                         {"adequate_until", until},
-                        {"exceeded_at", exceeded}});
+                        {"exceeded_at", exceeded},
+                        {"monitors", best_run->monitor_crossings}});
   }
 
   // 8. atlas.json, atlas.h5, atlas.html.

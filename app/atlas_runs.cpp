@@ -18,6 +18,7 @@
 #include "compare/binned_energies.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/model_comparison.hpp"
+#include "hydro/validity_monitors.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -263,11 +264,14 @@ json run_json(const AtlasRun& r) {
   j["scalars"] = scalars;
   j["scalar_errors"] = errors;
   j["fields"] = r.fields ? series_json(*r.fields) : json(nullptr);
+  j["monitors"] = r.monitor_crossings;
   return j;
 }
 
 std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting) {
   if (!j.is_object() || j.value("format", 0) != kCacheFormat) return std::nullopt;
+  // A hydro cached before its monitors were kept is run again (hydro runs are cheap).
+  if (is_hydro(setting.model) && !j.contains("monitors")) return std::nullopt;
   AtlasRun r;
   r.setting = setting;
   r.status = j["status"].get<std::string>();
@@ -286,6 +290,8 @@ std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting
   r.thermal_error = numbers_from(j["thermal_error"]);
   r.flow_error = numbers_from(j["flow_error"]);
   if (!j["fields"].is_null()) r.fields = series_from_json(j["fields"]);
+  if (j.contains("monitors"))
+    r.monitor_crossings = j["monitors"].get<std::map<std::string, double>>();
   r.cached = true;
   return r;
 }
@@ -403,6 +409,10 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
         run.status = hydro_status(model.outcome());
         run.reason = model.outcome().run.stop_reason;
         run.rejected_steps = model.outcome().run.rejected_steps;
+        for (const auto& d : hydro::monitor_definitions()) {
+          const auto& crossing = model.outcome().run.validity.first_crossing[int(d.monitor)];
+          if (crossing) run.monitor_crossings[d.name] = crossing->time;
+        }
         take_result(scene, r, run);
       } else if (setting.model == "haff_ode") {
         take_result(scene, make_haff_model(hydro.physics, scene.times, scene.bins)->run(), run);

@@ -71,6 +71,9 @@ struct AtlasRun {
   // ensemble mean).
   std::vector<double> times, thermal, flow, thermal_error, flow_error;
   std::optional<fields::FieldSeries> fields;
+  // A hydro's validity monitors (hydro/validity_monitors.hpp) that reached their threshold: the
+  // monitor's name and the first time it did (scaled units).
+  std::map<std::string, double> monitor_crossings;
   bool cached = false;  // taken from the cache, not run now
 };
 

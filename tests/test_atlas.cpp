@@ -209,6 +209,19 @@ TEST(AtlasCli, SingleModeLadderAndItsPage) {
   EXPECT_TRUE(inertia_ran);
   ASSERT_EQ(a["stability"].size(), 1u);
   EXPECT_EQ(a["stability"][0]["boundaries"].size(), 2u);
+  // The hydro's timeline carries its validity monitors (none reaches its threshold in this
+  // dilute, small-K scene; a crossing would lie within the run, t <= 3.225).
+  bool hydro_row = false;
+  for (const auto& row : a["timeline"]) {
+    if (row["model"] != "hydro/dilute") continue;
+    hydro_row = true;
+    ASSERT_TRUE(row["monitors"].is_object()) << row.dump();
+    for (const auto& [name, t] : row["monitors"].items()) {
+      EXPECT_GE(t.get<double>(), 0.0) << name;
+      EXPECT_LE(t.get<double>(), 3.3) << name;
+    }
+  }
+  EXPECT_TRUE(hydro_row);
   EXPECT_TRUE(fs::is_regular_file(dir / "atlas.html"));
   // `granvv report DIR` rebuilds the page.
   fs::remove(dir / "atlas.html");

@@ -142,7 +142,9 @@ def fig_stability(run):
         title="Ladder timeline: how long each model stays within tolerance",
         caption=("For each model, its best run (the finest of a hydro), the largest relative error of the "
                  "time-resolved observables it gives (energies, fields) against the reference at each "
-                 "compared time. The bar is green while it stays within the tolerance {tolerance}."))
+                 "compared time. The bar is green while it stays within the tolerance {tolerance}. A black bar "
+                 "on a hydro's row marks the first time one of its validity monitors (docs/physics.md §9) "
+                 "reached its threshold, named beside it."))
 def fig_timeline(run):
     rows = run.atlas("timeline") or []
     if not rows:
@@ -159,6 +161,10 @@ def fig_timeline(run):
         ax.scatter(t[~ok], np.full((~ok).sum(), i), color="C3", s=60, marker="x")
         c, m = style_of(r["model"])
         ax2.semilogy(t, np.where(e > 0, e, np.nan), marker=m, color=c, label=r["model"])
+        for name, when in sorted((r.get("monitors") or {}).items(), key=lambda kv: kv[1]):
+            ax.scatter([when], [i], color="k", marker="|", s=260, zorder=4)
+            ax.annotate(name.replace("_", " "), (when, i), xytext=(3, 7), textcoords="offset points", fontsize=6)
+            measured.append((f"{r['model']}: monitor {name}", f"reached its threshold at t = {fmt(when, 4)}", None))
         until = r.get("adequate_until")
         measured.append((r["model"], "adequate to t = " + fmt(until) if until is not None
                          else "not adequate at the first compared time", None))
