@@ -259,7 +259,8 @@ POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "cooling_f
                  "reference engine as granvv run judges its comparison (signal/noise {sn}). A point is the "
                  "smallest ε from which every larger ε on the grid ({grid}) is flagged as a model disagreement "
                  "that the unperturbed hydro does not have; a triangle at the top means no ε up to the largest "
-                 "was caught. The particle cost is N × ensemble, the disks simulated ({per} per member)."))
+                 "was caught. A grey cross at the bottom marks a particle run against which the unperturbed hydro "
+                 "is itself flagged as a model disagreement: only an earlier parting can then count. The particle cost is N × ensemble, the disks simulated ({per} per member)."))
 def fig_comparison_power(run):
     power = run.atlas("comparison_power")
     if not isinstance(power, dict) or not power.get("particles"):
@@ -294,6 +295,11 @@ def fig_comparison_power(run):
                 what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
                 members = (r.get("setting") or {}).get("ensemble")
                 measured.append((f"{label}, {members} members ({fmt(r['wall_seconds'], 3)} s)", what, None))
+    flagged = [cost[id(r)] for r in rows if (r.get("unperturbed") or {}).get("disagreement") == "model"]
+    if flagged:
+        bottom = min(eps) / 1.6 if eps else 1e-3
+        ax.scatter(flagged, [bottom] * len(flagged), marker="X", color="0.45", s=60,
+                   label="the unperturbed hydro is itself flagged (model)")
     for r in rows:
         base = r.get("unperturbed") or {}
         members = (r.get("setting") or {}).get("ensemble")
