@@ -186,7 +186,8 @@ def fig_timeline(run):
                  "tolerance, or how the engine failed; the star is the case's own contact. Right: the soft-contact "
                  "bias against the event-driven engine at the largest ensemble that ran ({against}), of the Haff "
                  "t0 and of P/(nT), against md.max_overlap, with one standard error (both ensembles); open "
-                 "markers are runs with the adaptive stiffness flipped."))
+                 "markers are runs with the adaptive stiffness flipped; grey squares, the DEM's t0 against the "
+                 "Enskog kinetic-theory t0 (with χ(φ))."))
 def fig_dem_map(run):
     dem = run.atlas("dem_map")
     if not isinstance(dem, dict) or not dem.get("points"):
@@ -236,6 +237,16 @@ def fig_dem_map(run):
                     measured.append((f"{label} bias at max_overlap {fmt(p['max_overlap'], 3)}",
                                      f"{fmt(100 * p[f'{key}_bias'], 3)} ± {fmt(100 * (p.get(f'{key}_bias_error') or 0), 2)} % "
                                      f"(ensemble {p['ensemble']}, {fmt(p['wall_seconds'], 3)} s)", None))
+    theory = sorted([p for p in pts if p.get("adaptive_stiffness") == own_adaptive and p.get("steps_per_contact") ==
+                     d.get("steps_per_contact") and p.get("t0_bias_kinetic_theory") is not None],
+                    key=lambda p: p["max_overlap"])
+    if theory:
+        ax2.plot([p["max_overlap"] for p in theory], [p["t0_bias_kinetic_theory"] for p in theory], "s--",
+                 color="0.4", label="Haff t0 against Enskog kinetic theory (with χ)")
+        for p in theory:
+            measured.append((f"Haff t0 against kinetic theory at max_overlap {fmt(p['max_overlap'], 3)}",
+                             f"{fmt(100 * p['t0_bias_kinetic_theory'], 3)} %", None))
+        drawn = True
     if not drawn:
         ax2.text(0.5, 0.5, "no event-driven reference: no bias", ha="center", va="center", transform=ax2.transAxes)
     tol = run.atlas("tolerance")
