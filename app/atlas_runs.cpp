@@ -30,6 +30,23 @@ using atlas::kNoValue;
 // Bumped whenever what a cached run holds changes, so that old cache files are not read.
 constexpr int kCacheFormat = 2;
 
+// A resolved case's text without its comment lines (where the case came from, the --set list)
+// and without one of its tables: a run does not depend on the [atlas] table (the grids and what
+// is judged), so another grid or budget finds the runs it shares in the cache.
+std::string without_table(const std::string& toml, const std::string& table) {
+  std::string out, line;
+  bool skipping = false;
+  for (std::size_t start = 0; start < toml.size();) {
+    std::size_t end = toml.find('\n', start);
+    if (end == std::string::npos) end = toml.size();
+    line = toml.substr(start, end - start);
+    start = end + 1;
+    if (!line.empty() && line[0] == '[') skipping = line == "[" + table + "]";
+    if (!skipping && (line.empty() || line[0] != '#')) out += line + "\n";
+  }
+  return out;
+}
+
 // FNV-1a, 64 bit: names a cache file after the text of its resolved case (not a security hash).
 std::string text_hash(const std::string& text) {
   std::uint64_t h = 1469598103934665603ull;
@@ -366,7 +383,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     run.reason = e.what();
     return run;
   }
-  std::string key = config->resolved_toml();
+  std::string key = without_table(config->resolved_toml(), "atlas");
   key += "\n# atlas: " + setting.model + " bins " + std::to_string(scene.bins) + " times";
   for (double t : scene.times) key += " " + format_real(t);
   const fs::path cache_file = cache_dir / (text_hash(key) + ".json");

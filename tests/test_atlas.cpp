@@ -304,6 +304,12 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
   const auto again = run_cli(args);
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(read_json(dir / "atlas.json")["runs_made"], 0);
+  // A run does not depend on the [atlas] table: a smaller grid finds all its runs there too.
+  std::string smaller = args;
+  smaller.replace(smaller.find("[2,8]"), 5, "[2]");
+  const auto subset = run_cli(smaller);
+  ASSERT_EQ(subset.exit_code, 0) << subset.output;
+  EXPECT_EQ(read_json(dir / "atlas.json")["runs_made"], 0);
 }
 
 TEST(AtlasCli, BadInputIsOneLineAndExitTwo) {
