@@ -261,9 +261,10 @@ class StripSampler {
     const double lo = strips_.edge[k], hi = strips_.edge[k + 1];
     StripGrid grid(lo - 1.0, hi - lo + 2.0, lx, ly);        // the strip and a margin of sigma
     const int left = (k + n - 1) % n, right = (k + 1) % n;  // one strip when n = 2
-    for (int neighbour : {left, right}) {
-      if (strips_.colour(neighbour) >= strips_.colour(k) || (neighbour == right && n == 2))
-        continue;
+    std::vector<int> neighbours{left};
+    if (right != left) neighbours.push_back(right);
+    for (int neighbour : neighbours) {
+      if (strips_.colour(neighbour) >= strips_.colour(k)) continue;
       const StripSample& other = strip(neighbour);
       for (std::size_t i = 0; i < other.x.size(); i += 3) grid.add(other.x[i], other.x[i + 1]);
     }
