@@ -24,7 +24,7 @@ double machine_memory_bytes() {
 }
 
 int launched_ranks() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS"}) {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {  // Open MPI, MPICH
     if (const char* value = std::getenv(name)) {
       const int n = std::atoi(value);
       if (n > 0) return n;

@@ -224,7 +224,6 @@ LammpsTag LammpsSession::create_atoms_with_ids(const AtomBatch& atoms, bool has_
   const std::size_t n = atoms.type.size();
   const std::int64_t before = natoms();
   // lammps_create_atoms keeps, on each rank, the atoms of the list inside its subdomain.
-  // (LAMMPS then warns "invalid total atoms" in its log: it expects this rank's n in total.)
   lammps_create_atoms(handle_, static_cast<int>(n), atoms.id.data(), atoms.type.data(),
                       atoms.x.data(), atoms.v.empty() ? nullptr : atoms.v.data(), nullptr, 0);
   const std::int64_t after = natoms();
