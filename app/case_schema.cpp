@@ -172,7 +172,7 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.enabled", kBoolean, false, any_value(), "run the particle engine for this case"},
       {"md.engine", kString, "lammps", one_of(md::particle_engine_names()),
        "particle engine (md_bridge/particle_engine_registry.cpp)"},
-      {"md.particles", kInteger, 0, closed_closed(0, 2e6),
+      {"md.particles", kInteger, 0, closed_closed(0, 1e9),
        "number of disks N; 0 = from physics.K with md.area_fraction and md.box_width"},
       {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
       {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
@@ -201,6 +201,10 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.max_collision_rate", kReal, 1000.0, closed_closed(1, 1e9),
        "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
        "(event-rate runaway)"},
+      {"md.accept_long_run", kBoolean, false, any_value(),
+       "run a particle scene whose work per rank is above the limit of a run that can finish "
+       "here (1e13 atom-steps, 3e10 collisions; the estimate is in --dry-run) instead of "
+       "refusing it"},
       {"md.snapshot_interval", kReal, 0.0, non_negative(),
        "H5MD particle snapshots every this much MD time; 0 = none"},
       {"md.checkpoint_interval", kReal, 300.0, non_negative(),

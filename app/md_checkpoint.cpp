@@ -118,8 +118,8 @@ std::optional<std::string> checkpointed_case(const fs::path& out_dir) {
 
 std::string checkpointed_case_difference(const std::string& checkpointed_case,
                                          const CaseConfig& config) {
-  static const std::set<std::string> outside_the_results{"md.checkpoint_interval",
-                                                         "hydro.progress_seconds"};
+  static const std::set<std::string> outside_the_results{
+      "md.checkpoint_interval", "md.accept_long_run", "hydro.progress_seconds"};
   std::map<std::string, std::string> before, now;
   try {
     for (auto& [key, value] :

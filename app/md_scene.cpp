@@ -50,7 +50,7 @@ std::string scene_problem_key(const CaseConfig& c, const md::ParticleScene& sc) 
 // (md_bridge/particle_work.hpp: LAMMPS atom-steps from the contact, event-driven collisions from
 // Enskog's collision frequency); a sample interval below the engine's time step (LAMMPS only)
 // is refused.
-void check_particle_work(const CaseConfig& c, const MdScene& s, double t_haff) {
+void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   const auto& spec = s.spec;
   const auto& sc = spec.scene;
   const double n = double(sc.particles);
@@ -72,10 +72,35 @@ void check_particle_work(const CaseConfig& c, const MdScene& s, double t_haff) {
     throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
   }
   const double dt0 = work.first_step;
-  refuse_beyond(c, work.keys, work.work, work.limit, work.unit,
-                "the particle run (" + std::to_string(s.ensemble) + " x " +
-                    std::to_string(sc.particles) + " disks" +
-                    (dt0 > 0.0 ? ", first step ~" + format_real(dt0) : std::string()) + ")");
+  // The work and memory of one rank: LAMMPS divides both over the ranks, the serial
+  // event-driven engine runs whole on every rank.
+  ParticleRunEstimate& e = s.estimate;
+  e.ranks = launched_ranks();
+  const double share = work.divides_over_ranks ? 1.0 / e.ranks : 1.0;
+  e.work_per_rank = work.work * share;
+  e.unit = work.unit;
+  e.rate = work.rate;
+  e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
+                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n : 0.0);
+  e.machine_bytes = machine_memory_bytes();
+  const std::vector<std::string> size_keys = {"md.particles", "physics.K", "md.box_width",
+                                              "md.area_fraction"};
+  if (e.machine_bytes > 0.0 && e.bytes_per_rank > e.machine_bytes) {
+    const std::string key = key_to_blame(c, size_keys);
+    refuse(c, key,
+           "the particle run (" + std::to_string(sc.particles) +
+               " particles) needs more memory "
+               "than this machine has: " +
+               e.describe() + "; run on more ranks or a smaller scene");
+  }
+  if (!c.boolean("md.accept_long_run")) {
+    refuse_beyond(c, work.keys, e.work_per_rank, work.limit, work.unit,
+                  "the particle run (" + std::to_string(s.ensemble) + " x " +
+                      std::to_string(sc.particles) + " disks" +
+                      (dt0 > 0.0 ? ", first step ~" + format_real(dt0) : std::string()) + ", " +
+                      e.describe() + ")",
+                  "set md.accept_long_run = true to run it anyway");
+  }
   // A sample interval below the step skips requested times: the run passes a snapshot time
   // within one step without stopping at it (the last one is lost). The step at the end of the
   // run, where adaptive stiffness has made it longest, is the one that counts.
@@ -207,12 +232,6 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
                       ": the initial density peak n/n0 = " + format_real(n_max) +
                       " would need a local area fraction above 0.5");
-  }
-  if (spec.scene.particles > 2'000'000) {
-    throw ConfigError(c.origin("md.particles") + ": the scene needs " +
-                      std::to_string(spec.scene.particles) +
-                      " disks; above 2e6 a single-node run here takes too long (use MPI on a "
-                      "cluster, or a larger K / smaller md.box_width)");
   }
   check_particle_work(c, s, t_haff);
   if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units

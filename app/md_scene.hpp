@@ -12,6 +12,7 @@
 #include "app/case_config.hpp"
 #include "app/hydro_scene.hpp"
 #include "app/md_checkpoint.hpp"
+#include "app/work_estimate.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/haff_fit.hpp"
 #include "compare/haff_window.hpp"
@@ -28,6 +29,8 @@ struct MdScene {
   double haff_mode_energy_fraction = 0.0;  // md.haff_mode_energy_fraction
   // Every number and boolean of [md] by key: the engine reads the ones it understands.
   md::EngineSettings engine_settings;
+  // The work, memory and wall time of one rank (md_bridge/particle_work.hpp).
+  ParticleRunEstimate estimate;
 };
 
 // Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot

@@ -64,6 +64,7 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       "q = {:.4g}, {} unstable modes), ensemble of {}",
       sc.particles, sc.box_length, sc.box_width, sc.area_fraction, sc.restitution, sc.physics().K,
       sc.physics().q, sc.unstable_modes(), scene.ensemble);
+  log.info("md: work estimate {}", scene.estimate.describe());
   if (!checkpointing.resume.empty()) {
     const MemberCheckpoint& last_saved = checkpointing.resume.back();
     log.info("md: resuming from the checkpoints: {} finished member(s){}",
@@ -273,6 +274,7 @@ int run_command(const RunOptions& options) {
   const CaseConfig& config = *loaded;
   if (options.dry_run) {
     std::cout << config.resolved_toml();
+    if (md_scene) std::cout << "# md work estimate " << md_scene->estimate.describe() << "\n";
     return 0;
   }
 

@@ -97,6 +97,10 @@ void LammpsEngine::open_session(const ParticleSample& sample) {
   session.comm = options_.comm;
   lmp_ = std::make_unique<LammpsSession>(std::move(session));
   set_up_disk_gas(*lmp_, options_.box_length, options_.box_width, sample, contact_);
+  add_stress_computes();
+}
+
+void LammpsEngine::add_stress_computes() {
   const std::string stress = kContactStressCompute, sum = kContactVirialSum;
   lmp_->commands(
       {"compute " + stress + " all stress/atom NULL pair",
@@ -107,14 +111,32 @@ void LammpsEngine::open_session(const ParticleSample& sample) {
 }
 
 void LammpsEngine::set_up(const ParticleSample& sample) {
+  set_up_sampled([&](double, double) { return sample; });
+}
+
+// The box first, so that each rank knows its subdomain and draws only the strips over it; the
+// contact is made for the fastest speed over every rank's particles.
+void LammpsEngine::set_up_sampled(const RangeSampler& sample) {
   if (runs_ == 1) {
     first_final_ = contact_;
     first_final_speed_ = speed_;
   }
-  speed_ =
-      std::max(fastest_relative_speed(sample.v.data(), int(sample.count()), MPI_COMM_SELF), 1e-12);
+  lmp_.reset();  // one LAMMPS instance at a time
+  LammpsSessionOptions session;
+  session.log_file = options_.log_file;
+  session.comm = options_.comm;
+  lmp_ = std::make_unique<LammpsSession>(std::move(session));
+  create_disk_box(*lmp_, options_.box_length, options_.box_width);
+  const auto [x_lo, x_hi] = lammps_subdomain_x(*lmp_);
+  const ParticleSample particles = sample(x_lo, x_hi);
+  // A sample without IDs is the whole box on every rank (its fastest speed is every rank's).
+  speed_ = std::max(fastest_relative_speed(particles.v.data(), int(particles.count()),
+                                           particles.id.empty() ? MPI_COMM_SELF : options_.comm),
+                    1e-12);
   contact_ = contact_for_speed(speed_);
-  open_session(sample);
+  add_disks(*lmp_, particles, contact_,
+            particles.id.empty() ? particles.count() : options_.particles);
+  add_stress_computes();
   t_ = 0.0;
   steps_ = 0;
   changes_ = 0;
@@ -172,7 +194,7 @@ void LammpsEngine::restore_state(const EngineState& state) {
                                 " particles for a scene of " + std::to_string(options_.particles));
   // Saved positions may lie up to half the neighbour skin outside the periodic box (LAMMPS maps
   // atoms back only when it rebuilds its lists); their images inside it are the same state.
-  ParticleSample sample{p.x, p.v};
+  ParticleSample sample{p.x, p.v, {}};
   const double edge[2] = {options_.box_length, options_.box_width};
   for (std::size_t i = 0; i < sample.x.size(); i += 3) {
     for (int d = 0; d < 2; ++d) sample.x[i + d] = periodic_image(sample.x[i + d], edge[d]);

@@ -53,6 +53,7 @@ class LammpsEngine final : public ParticleEngine {
   CollisionRuleCheck check_collision_rule() override;
 
   void set_up(const ParticleSample& sample) override;
+  void set_up_sampled(const RangeSampler& sample) override;
   MPI_Comm comm() const override { return options_.comm; }
   double time_resolution() const override { return contact_.dt; }
   double advance_to(double t) override;
@@ -89,6 +90,7 @@ class LammpsEngine final : public ParticleEngine {
   std::chrono::steady_clock::time_point made_;
   std::unique_ptr<LammpsSession> lmp_;
   void open_session(const ParticleSample& sample);
+  void add_stress_computes();  // and the thermo line that tallies them
   ContactModel contact_;
   double speed_ = 0.0;  // relative speed the contact was made for
   double t_ = 0.0;

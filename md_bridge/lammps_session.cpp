@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 namespace granvv::md {
@@ -138,7 +139,8 @@ LammpsTag LammpsSession::create_atoms(const AtomBatch& atoms) {
   const auto bad = [](const std::string& what) {
     throw std::invalid_argument("create_atoms: " + what);
   };
-  if (n == 0) bad("no atoms");
+  if (n == 0 && atoms.id.empty()) bad("no atoms");
+  if (!atoms.id.empty() && atoms.id.size() != n) bad("id must be empty or hold 1 per atom");
   if (atoms.x.size() != 3 * n) bad("x must hold 3 values per atom");
   if (!atoms.v.empty() && atoms.v.size() != 3 * n) bad("v must be empty or hold 3 per atom");
   const bool has_radius = lammps_extract_setting(handle_, "radius_flag") == 1;
@@ -178,6 +180,8 @@ LammpsTag LammpsSession::create_atoms(const AtomBatch& atoms) {
       bad(atom + ": mass " + show(atoms.mass[i]) + " must be finite and > 0");
   }
 
+  if (!atoms.id.empty()) return create_atoms_with_ids(atoms, has_radius, has_rmass);
+
   // New IDs continue after the largest existing one.
   long long local_max = 0;
   {
@@ -212,6 +216,36 @@ LammpsTag LammpsSession::create_atoms(const AtomBatch& atoms) {
     if (rad) rad[i] = 0.5 * atoms.diameter[k];
     if (mass) mass[i] = atoms.mass[k];
   }
+  return first;
+}
+
+LammpsTag LammpsSession::create_atoms_with_ids(const AtomBatch& atoms, bool has_radius,
+                                               bool has_rmass) {
+  const std::size_t n = atoms.type.size();
+  const std::int64_t before = natoms();
+  // lammps_create_atoms keeps, on each rank, the atoms of the list inside its subdomain.
+  lammps_create_atoms(handle_, static_cast<int>(n), atoms.id.data(), atoms.type.data(),
+                      atoms.x.data(), atoms.v.empty() ? nullptr : atoms.v.data(), nullptr, 0);
+  const std::int64_t after = natoms();
+  if (after != before + atoms.total)
+    throw std::runtime_error("lammps_create_atoms created " + std::to_string(after - before) +
+                             " of " + std::to_string(atoms.total) +
+                             " atoms (the ranks' lists do not cover the box once)");
+  std::unordered_map<LammpsTag, std::size_t> index;
+  index.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) index.emplace(atoms.id[i], i);
+  const int nl = nlocal();
+  const LammpsTag* tags = id();
+  double* rad = has_radius ? radius() : nullptr;
+  double* mass = has_rmass ? rmass() : nullptr;
+  LammpsTag first = std::numeric_limits<LammpsTag>::max();
+  for (int i = 0; i < nl; ++i) {
+    const auto found = index.find(tags[i]);
+    if (found == index.end()) continue;
+    if (rad) rad[i] = 0.5 * atoms.diameter[found->second];
+    if (mass) mass[i] = atoms.mass[found->second];
+  }
+  for (LammpsTag t : atoms.id) first = std::min(first, t);
   return first;
 }
 

@@ -39,6 +39,11 @@ struct AtomBatch {
   std::vector<double> v;         // 3 per atom, or empty
   std::vector<double> diameter;  // per atom; required when atoms carry a radius
   std::vector<double> mass;      // per atom; required when atoms carry a per-atom mass
+  // IDs (>= 1), or empty: consecutive after the largest existing one. With IDs, the batch may
+  // differ from rank to rank (each rank keeps the atoms of its subdomain), and `total` is the
+  // number of atoms all ranks create together (0: the batch's size, the same on every rank).
+  std::vector<LammpsTag> id;
+  long long total = 0;
 };
 
 class LammpsSession {
@@ -92,6 +97,7 @@ class LammpsSession {
   std::vector<double> gather_atoms(const std::string& name, int count);
 
  private:
+  LammpsTag create_atoms_with_ids(const AtomBatch& atoms, bool has_radius, bool has_rmass);
   void* handle_ = nullptr;
   MPI_Comm comm_ = MPI_COMM_WORLD;
   int rank_ = 0;

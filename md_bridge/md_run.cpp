@@ -70,7 +70,15 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     next_frame = resume->next_frame;
   } else {
     result.fields = fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins);
-    engine.set_up(sample_particles(scene, spec.fields, spec.seed));
+    // Each rank draws the strips of its own part of the box; the strips' momenta are shared.
+    const MPI_Comm comm = engine.comm();
+    engine.set_up_sampled([&](double x_lo, double x_hi) {
+      return sample_particles_in(scene, spec.fields, spec.seed, x_lo, x_hi,
+                                 [comm](std::vector<double>& momenta) {
+                                   MPI_Allreduce(MPI_IN_PLACE, momenta.data(), int(momenta.size()),
+                                                 MPI_DOUBLE, MPI_MAX, comm);
+                                 });
+    });
   }
   int rank = 0;
   MPI_Comm_rank(engine.comm(), &rank);

@@ -7,6 +7,8 @@
 // names one.
 #include <mpi.h>
 
+#include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -103,6 +105,14 @@ class ParticleEngine {
 
   // A new run from the sampled particles (the full sample on every rank), at t = 0.
   virtual void set_up(const ParticleSample& sample) = 0;
+  // A new run from particles drawn for the x-range this rank holds (collective): `sample(x_lo,
+  // x_hi)` gives those of the strips overlapping it (particle_sampler.hpp), with their IDs. An
+  // engine that holds every particle on every rank asks for the whole box.
+  using RangeSampler = std::function<ParticleSample(double x_lo, double x_hi)>;
+  virtual void set_up_sampled(const RangeSampler& sample) {
+    set_up(
+        sample(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()));
+  }
   // The ranks over which the local particles are spread.
   virtual MPI_Comm comm() const = 0;
   // Times the engine reaches lie within half of this of the time asked for (LAMMPS: the time

@@ -72,9 +72,9 @@ std::string scene_problem(const ParticleScene& s) {
     why << "restitution " << s.restitution << " is outside (0, 1]";
   } else if (s.particles < 2) {
     why << "the scene has " << s.particles << " particles; at least 2 are needed";
-  } else if (s.particles > 50'000'000) {
+  } else if (s.particles > 2'147'483'647LL) {
     why << "the scene has " << s.particles
-        << " particles, more than this machine (24 GiB, 2 cores) can run";
+        << " particles, more than 32-bit particle IDs can number (2^31 - 1)";
   }
   return why.str();
 }

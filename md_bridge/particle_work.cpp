@@ -38,6 +38,10 @@ ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q) {
   w.unit = "atom-steps";
   w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.steps_per_contact", "md.max_overlap"};
   w.first_step = dt0;
+  w.rate = kLammpsAtomStepsPerCoreSecond;
+  w.divides_over_ranks = true;
+  w.bytes_fixed = kLammpsBytesFixed;
+  w.bytes_per_disk = kLammpsBytesPerDisk;
   // The step at the end of the run, where adaptive stiffness has made it longest.
   w.last_step = haff ? dt0 * (1.0 + q.t_end / q.haff_time) : dt0;
   return w;
@@ -54,6 +58,9 @@ ParticleWorkEstimate event_driven_work(const ParticleWorkQuestion& q) {
   w.limit = kMaxCollisions;
   w.unit = "collisions";
   w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.area_fraction"};
+  w.rate = kEventDrivenCollisionsPerCoreSecond;
+  w.bytes_fixed = kEventDrivenBytesFixed;
+  w.bytes_per_disk = kEventDrivenBytesPerDisk;
   return w;
 }
 

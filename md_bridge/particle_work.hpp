@@ -17,6 +17,24 @@ inline constexpr double kMaxAtomSteps = 1e13;
 // of 10^4 disks on this machine (docs/md_benchmarks.md §4).
 inline constexpr double kMaxCollisions = 3e10;
 
+// The rates a work estimate turns into wall time, per core of this machine (2 cores):
+// LAMMPS 7.1e7 atom-steps per second, the bridge's md.wall_seconds for 10^4 disks at phi =
+// 0.05 on one rank (docs/md_benchmarks.md §1, 2026-11-22, load < 1); event-driven 2.5e5
+// collisions per CPU second for 10^4 disks at phi = 0.05 (docs/md_benchmarks.md §4,
+// 2026-12-01, the tournament-tree calendar).
+inline constexpr double kLammpsAtomStepsPerCoreSecond = 7.1e7;
+inline constexpr double kEventDrivenCollisionsPerCoreSecond = 2.5e5;
+// Resident memory of a rank: a fixed part and a part per disk it holds (engine, sample and its
+// overlap grid, moments), from the peak RSS of one-rank runs of 1e5 and 2e5 disks at phi = 0.05
+// (docs/md_benchmarks.md §5): LAMMPS 112 and 183 MB, event-driven 83 and 129 MB.
+inline constexpr double kLammpsBytesFixed = 4.1e7;
+inline constexpr double kLammpsBytesPerDisk = 710.0;
+inline constexpr double kEventDrivenBytesFixed = 3.7e7;
+inline constexpr double kEventDrivenBytesPerDisk = 461.0;
+// A particle frame is gathered onto every rank (lammps_gather_atoms): x and v, and the
+// library's own copy of them.
+inline constexpr double kFrameBytesPerDisk = 4.0 * 6.0 * sizeof(double);
+
 struct ParticleWorkQuestion {
   ParticleScene scene;
   EngineSettings settings;           // the md.* keys, as the engine gets them
@@ -38,6 +56,13 @@ struct ParticleWorkEstimate {
   // The engine's time step at t = 0 and at md.t_end (MD time; 0 for an engine without one): a
   // sample interval below it cannot be kept.
   double first_step = 0.0, last_step = 0.0;
+  // Wall time and memory: `unit` per second on one core (the measured rates above); whether
+  // the work and the disks divide over the MPI ranks (LAMMPS's domain decomposition; the
+  // event-driven engine is serial and every rank runs it whole); a rank's resident memory,
+  // bytes_fixed + bytes_per_disk x the disks it holds.
+  double rate = 0.0;
+  bool divides_over_ranks = false;
+  double bytes_fixed = 0.0, bytes_per_disk = 0.0;
 };
 
 // LAMMPS (docs/physics.md §5): the step is tc / md.steps_per_contact with tc ~ pi md.max_overlap

@@ -380,6 +380,19 @@ INSTANTIATE_TEST_SUITE_P(
                  "",
                  "single_mode --dry-run --set hydro.cells=1000000000",
                  {"hydro.cells = 1000000000", "[4, 1e7]"}},
+        // Issue 15: no fixed cap on the disks; a scene is refused when one rank would need more
+        // memory than the machine has (5e8 disks: ~350 GB), or when its work is beyond what
+        // can finish here and md.accept_long_run is not set.
+        BadInput{"md_particles_beyond_memory",
+                 "",
+                 "md_haff --dry-run --set md.particles=500000000",
+                 {"md.particles = 500000000", "needs more memory than this machine has",
+                  "atom-steps", "GB of memory"}},
+        BadInput{
+            "md_long_run_not_accepted",
+            "",
+            "md_paper_wide --dry-run --set md.accept_long_run=false",
+            {"md.t_end = 141796.3", "atom-steps", "wall time", "set md.accept_long_run = true"}},
         BadInput{"random_modes_beyond_mesh",
                  "",
                  "clustering --dry-run --set initial.random_modes=100000000",
@@ -629,6 +642,29 @@ TEST(CliDryRun, AcceptsAnArrayOverride) {
   EXPECT_EQ((*times)[1].value<double>(), 2.0);
   EXPECT_EQ((*times)[2].value<double>(), 3.225);
   EXPECT_EQ(resolved["case"]["name"].value<std::string>(), "single_mode");
+}
+
+// Issue 15: the paper's scene in a 1000 sigma channel (2.8e6 disks, above the former 2e6 cap)
+// is not refused; its dry run ends with the work estimate per rank as a TOML comment, the
+// atom-steps of which are N x steps with steps = (t0/dt0) ln(1 + t_end/t0) (particle_work.hpp),
+// and its work, above the 1e13 atom-steps of a run that finishes here, is accepted by
+// md.accept_long_run = true in the case file.
+TEST(CliDryRun, WideScenePrintsItsWorkEstimate) {
+  const CliStreams r = run_cli_streams("run md_paper_wide --dry-run");
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const toml::table resolved = parse_toml(r.out, "dry-run output");
+  EXPECT_EQ(resolved["md"]["accept_long_run"].value<bool>(), true);
+  const std::regex estimate(
+      "# md work estimate per rank \\(1 rank\\): ([0-9.e+]+) atom-steps, ([0-9.]+) GB of memory "
+      "\\(this machine has ([0-9.]+) GB\\), about ([0-9.]+) days of wall time");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, estimate)) << r.out;
+  const double atom_steps = std::stod(m[1]), gigabytes = std::stod(m[2]);
+  EXPECT_GT(atom_steps, 1e13);  // beyond the limit, so accepted only by the key
+  EXPECT_LT(atom_steps, 1e15);
+  EXPECT_GT(gigabytes, 2.82e6 * 500 / 1e9);  // at least the LAMMPS atoms' few hundred bytes each
+  EXPECT_LT(gigabytes, std::stod(m[3]));
+  EXPECT_NEAR(std::stod(m[4]), atom_steps / 7.1e7 / 86400, 0.01 * atom_steps / 7.1e7 / 86400);
 }
 
 TEST(CliDryRun, LastSetOfAKeyWins) {

@@ -1,6 +1,7 @@
 // The particle engine on small systems with the real LAMMPS library: conservation,
 // cooling against Haff's law, adaptive stiffness, and refusal of impossible scenes through
 // the real CLI (exit 2, nothing written).
+#include <H5Cpp.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -298,6 +299,15 @@ TEST(MdCli, ProcessEndingInsideTheParticleRunOfAComparisonSaysSo) {
 namespace granvv::md {
 namespace {
 
+// `granvv` + args + one, and under mpirun -np 2 the same + two; true if both exit 0.
+bool run_on_one_and_two_ranks(const std::string& args, const std::filesystem::path& one,
+                              const std::filesystem::path& two) {
+  const std::string quiet = " > /dev/null 2>&1";
+  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe -np 2 ";
+  return std::system((std::string(GRANVV_BINARY) + args + one.string() + quiet).c_str()) == 0 &&
+         std::system((mpirun + GRANVV_BINARY + args + two.string() + quiet).c_str()) == 0;
+}
+
 // Two MPI ranks: LAMMPS splits the box, the coarse-grainer reduces moments over the ranks,
 // rank 0 writes. The same seed gives the same statistics as one rank (the initial sample is
 // the same on every rank; collisions are summed in another order, so agreement is to
@@ -309,18 +319,59 @@ TEST(MdCli, TwoMpiRanksGiveTheStatisticsOfOne) {
       "--set 'md.output_times=[0, 1, 2]' --out ";
   const auto one = granvv::testing::fresh_directory("mpi-one");
   const auto two = granvv::testing::fresh_directory("mpi-two");
-  ASSERT_EQ(
-      std::system((std::string(GRANVV_BINARY) + args + one.string() + " > /dev/null 2>&1").c_str()),
-      0);
-  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe -np 2 ";
-  ASSERT_EQ(
-      std::system((mpirun + GRANVV_BINARY + args + two.string() + " > /dev/null 2>&1").c_str()), 0);
+  ASSERT_TRUE(run_on_one_and_two_ranks(args, one, two));
   const auto a = nlohmann::json::parse(granvv::testing::read_text(one / "summary.json"))["md"];
   const auto b = nlohmann::json::parse(granvv::testing::read_text(two / "summary.json"))["md"];
   EXPECT_EQ(a["steps"], b["steps"]);
   EXPECT_NEAR(a["haff_t0_measured"].get<double>(), b["haff_t0_measured"].get<double>(),
               1e-6 * a["haff_t0_measured"].get<double>());
   EXPECT_EQ(a["restitution_measured"], b["restitution_measured"]);
+  std::filesystem::remove_all(one);
+  std::filesystem::remove_all(two);
+}
+
+}  // namespace
+}  // namespace granvv::md
+
+namespace granvv::md {
+namespace {
+
+// The first frame of an H5MD dataset [frames, N, 2], flattened.
+std::vector<double> first_frame(const std::filesystem::path& file, const std::string& path) {
+  H5::H5File h5(file.string(), H5F_ACC_RDONLY);
+  H5::DataSet set = h5.openDataSet(path);
+  H5::DataSpace space = set.getSpace();
+  hsize_t dims[3] = {0, 0, 0};
+  space.getSimpleExtentDims(dims);
+  std::vector<double> all(std::size_t(dims[0] * dims[1] * dims[2]));
+  set.read(all.data(), H5::PredType::NATIVE_DOUBLE);
+  all.resize(std::size_t(dims[1] * dims[2]));
+  return all;
+}
+
+// Issue 15: 100 001 disks are two strips (particle_sampler.hpp). Under mpirun -np 2 LAMMPS
+// cuts the box (15 708 x 100 sigma) along x; each rank samples the strips over its half and
+// creates the disks of its subdomain, with the strips' IDs. The particles of the first H5MD
+// frame (t = 0, gathered by ID) are those of one rank bit for bit.
+TEST(MdCli, TwoRanksSampleTheParticlesOfOneBitForBit) {
+  const std::string args =
+      " run md_cooling_sweep --quiet --no-report --set md.particles=100001 "
+      "--set md.box_width=100 --set md.time_unit='\"md\"' --set md.t_end=0.01 "
+      "--set md.sample_interval=0.01 --set md.snapshot_interval=0.01 --set md.ensemble=1 "
+      "--set md.checkpoint_interval=0 --out ";
+  const auto one = granvv::testing::fresh_directory("strips-one");
+  const auto two = granvv::testing::fresh_directory("strips-two");
+  ASSERT_TRUE(run_on_one_and_two_ranks(args, one, two));
+  for (const char* name : {"position", "velocity"}) {
+    const std::string path = std::string("/particles/all/") + name + "/value";
+    const auto a = first_frame(one / "particles.h5", path);
+    const auto b = first_frame(two / "particles.h5", path);
+    ASSERT_EQ(a.size(), 2u * 100001u) << name;
+    ASSERT_EQ(a.size(), b.size()) << name;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+    EXPECT_EQ(differ, 0u) << name;
+  }
   std::filesystem::remove_all(one);
   std::filesystem::remove_all(two);
 }
