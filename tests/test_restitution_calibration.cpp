@@ -161,7 +161,8 @@ TEST(RestitutionLammpsSession, RecordsCommandsAndSetsTheMassExplicitly) {
   lmp.set_command_callback([&seen](const std::string& c) { seen.push_back(c); });
   EXPECT_FALSE(lmp.box_exists());
   EXPECT_THROW(lmp.run(1, true), std::logic_error);
-  EXPECT_THROW(lmp.create_atoms(AtomBatch{{1}, {0, 0, 0}, {}, {1.0}, {1.0}}), std::logic_error);
+  EXPECT_THROW(lmp.create_atoms(AtomBatch{{1}, {0, 0, 0}, {}, {1.0}, {1.0}, {}, 0}),
+               std::logic_error);
   lmp.commands({"units lj", "dimension 2", "atom_style sphere", "boundary p p p",
                 "region box block -5 5 -5 5 -0.5 0.5", "create_box 2 box"});
   EXPECT_TRUE(lmp.box_exists());
@@ -171,24 +172,24 @@ TEST(RestitutionLammpsSession, RecordsCommandsAndSetsTheMassExplicitly) {
   EXPECT_EQ(seen, lmp.history());
 
   // Rejected before LAMMPS: nothing is created.
-  AtomBatch outside{{1}, {6.0, 0, 0}, {}, {1.0}, {1.0}};
+  AtomBatch outside{{1}, {6.0, 0, 0}, {}, {1.0}, {1.0}, {}, 0};
   EXPECT_THROW(lmp.create_atoms(outside), std::invalid_argument);
-  AtomBatch wrong_type{{3}, {0, 0, 0}, {}, {1.0}, {1.0}};
+  AtomBatch wrong_type{{3}, {0, 0, 0}, {}, {1.0}, {1.0}, {}, 0};
   EXPECT_THROW(lmp.create_atoms(wrong_type), std::invalid_argument);
-  AtomBatch no_mass{{1}, {0, 0, 0}, {}, {1.0}, {}};
+  AtomBatch no_mass{{1}, {0, 0, 0}, {}, {1.0}, {}, {}, 0};
   EXPECT_THROW(lmp.create_atoms(no_mass), std::invalid_argument);
-  AtomBatch off_plane{{1}, {0, 0, 0.1}, {}, {1.0}, {1.0}};
+  AtomBatch off_plane{{1}, {0, 0, 0.1}, {}, {1.0}, {1.0}, {}, 0};
   EXPECT_THROW(lmp.create_atoms(off_plane), std::invalid_argument);
-  AtomBatch bad_v{{1}, {0, 0, 0}, {std::nan(""), 0, 0}, {1.0}, {1.0}};
+  AtomBatch bad_v{{1}, {0, 0, 0}, {std::nan(""), 0, 0}, {1.0}, {1.0}, {}, 0};
   EXPECT_THROW(lmp.create_atoms(bad_v), std::invalid_argument);
   EXPECT_EQ(lmp.natoms(), 0);
 
   AtomBatch two{
-      {1, 2}, {-1.0, 0, 0, 1.5, 2.0, 0}, {0.5, 0, 0, -0.25, 0, 0}, {1.0, 0.8}, {1.0, 2.0}};
+      {1, 2}, {-1.0, 0, 0, 1.5, 2.0, 0}, {0.5, 0, 0, -0.25, 0, 0}, {1.0, 0.8}, {1.0, 2.0}, {}, 0};
   EXPECT_EQ(lmp.create_atoms(two), 1);
   EXPECT_EQ(lmp.natoms(), 2);
   EXPECT_EQ(lmp.nlocal(), 2);
-  AtomBatch third{{1}, {3.0, 3.0, 0}, {}, {1.0}, {1.0}};
+  AtomBatch third{{1}, {3.0, 3.0, 0}, {}, {1.0}, {1.0}, {}, 0};
   EXPECT_EQ(lmp.create_atoms(third), 3);  // IDs continue
   const std::vector<double> mass = lmp.gather_atoms("rmass", 1);
   const std::vector<double> radius = lmp.gather_atoms("radius", 1);
