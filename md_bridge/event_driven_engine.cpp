@@ -140,22 +140,32 @@ double EventDrivenEngine::minimum_image(double d, double length) const {
   return d;
 }
 
+// A disk's coordinate lies in its own cell (cell changes and wraps happen at its crossings), so
+// the separation from a disk of a neighbouring cell is d = a - b in the cell's image: d - L or
+// d + L across the box's face (the same operations as minimum_image wherever the two agree,
+// i.e. with at least 4 cells along the side).
+double EventDrivenEngine::image(double d, int wrap, double length) {
+  if (wrap > 0) return d - length;
+  if (wrap < 0) return d + length;
+  return d;
+}
+
 void EventDrivenEngine::fly(Disk& d, double t) const {
   d.x += d.vx * (t - d.t);
   d.y += d.vy * (t - d.t);
   d.t = t;
 }
 
-// Touching a disk of `cell` (at its position now, computed without moving it) sooner than
-// the soonest collision found so far.
-void EventDrivenEngine::scan(int i, double now, int cell) {
+// Touching a disk of a neighbouring cell (at its position now, computed without moving it, in
+// that cell's periodic image) sooner than the soonest collision found so far.
+void EventDrivenEngine::scan(int i, double now, const PeriodicCells::Neighbour& cell) {
   const Disk& a = disks_[std::size_t(i)];
   Soonest& s = soonest_[std::size_t(i)];
-  for (int j = cells_->first(cell); j >= 0; j = cells_->next(j)) {
+  for (int j = cells_->first(cell.cell); j >= 0; j = cells_->next(j)) {
     if (j == i) continue;
     const Disk& b = disks_[std::size_t(j)];
-    const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
-    const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
+    const double dx = image(a.x - (b.x + b.vx * (now - b.t)), cell.wrap_x, options_.box_length);
+    const double dy = image(a.y - (b.y + b.vy * (now - b.t)), cell.wrap_y, options_.box_width);
     const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
     if (now + dt < s.t) {
       s.t = now + dt;
@@ -188,7 +198,7 @@ void EventDrivenEngine::schedule(int i, double now) {
 void EventDrivenEngine::predict(int i, double now) {
   fly(disks_[std::size_t(i)], now);
   soonest_[std::size_t(i)] = {kNever, -1, 0};
-  for (const int c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
+  for (const auto& c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
   schedule(i, now);
 }
 
@@ -202,7 +212,7 @@ void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int 
     return;
   }
   fly(disks_[std::size_t(i)], now);
-  for (const int c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
+  for (const auto& c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
   schedule(i, now);
 }
 
@@ -392,8 +402,8 @@ double EventDrivenEngine::smallest_separation() const {
   double closest = kNever;
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
-    for (const int c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
-      for (int j = cells_->first(c); j >= 0; j = cells_->next(j)) {
+    for (const auto& c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
+      for (int j = cells_->first(c.cell); j >= 0; j = cells_->next(j)) {
         if (std::size_t(j) <= i) continue;
         const Disk& b = disks_[std::size_t(j)];
         const double dx = minimum_image(a.x - b.x, options_.box_length);

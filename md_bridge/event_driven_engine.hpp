@@ -118,7 +118,7 @@ class EventDrivenEngine final : public ParticleEngine {
   // did), or after it entered a new cell from the three cells that joined the neighbourhood.
   void predict(int i, double now);
   void predict_after_crossing(int i, double now, int axis, int direction);
-  void scan(int i, double now, int cell);
+  void scan(int i, double now, const PeriodicCells::Neighbour& cell);
   void schedule(int i, double now);
   void collide(int i, int j, double now);
   void cross(int i, int axis, double now);
@@ -126,7 +126,10 @@ class EventDrivenEngine final : public ParticleEngine {
   // Renumbers the disks in the order of their cells (cells, calendar and partners follow), so
   // that the disks of neighbouring cells lie near each other in memory as the gas mixes.
   void order_by_cell();
+  // The nearest image of a separation d along a side of the given length: for disks at contact.
   double minimum_image(double d, double length) const;
+  // The separation d = a - b of a disk b of a neighbouring cell, in that cell's image (wrap).
+  static double image(double d, int wrap, double length);
 
   EventDrivenOptions options_;
   std::chrono::steady_clock::time_point made_;
