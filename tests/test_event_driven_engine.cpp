@@ -65,7 +65,10 @@ TEST(HardDiskCollision, RestitutionRisesToOneBelowTheCollapseSpeed) {
 TEST(EventDrivenEngine, HeadOnCollisionHasTheRestitutionAndTheRegistryMakesIt) {
   ParticleEngineSetup setup;
   setup.scene = scene_from_particles(400, 0.05, 50.0, 0.8);
-  setup.settings = {{"md.collapse_speed", 0.01}, {"md.max_collision_rate", 1000}, {"md.bins", 4}};
+  setup.settings = {{"md.collapse_speed", 0.01},
+                    {"md.contact_duration", 0.0},
+                    {"md.max_collision_rate", 1000},
+                    {"md.bins", 4}};
   const auto engine = make_particle_engine("event_driven", setup);
   EXPECT_EQ(engine->name(), "event_driven");
   const CollisionRuleCheck check = engine->check_collision_rule();
@@ -316,9 +319,9 @@ TEST(EventDrivenEngine, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne
   EXPECT_THROW(fresh.restore_state(wrong), std::invalid_argument);
 }
 
-// Inelastic collapse with the rule off: r = 0.3 in a dense gas collapses, and the segment stops
-// with the runaway named instead of running on; with the rule on (u0 = 0.01) the same gas
-// runs through, with the changed collisions counted.
+// Inelastic collapse with the rules off: r = 0.3 in a dense gas collapses, and the segment stops
+// with the runaway named instead of running on; with the collapse rule on (u0 = 0.01), or the TC
+// rule alone, the same gas runs through, with the changed collisions counted.
 TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt) {
   MpiEnvironment::ensure();
   const ParticleScene scene = scene_from_particles(1000, 0.4, 20.0, 0.3);
@@ -340,6 +343,17 @@ TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt)
   for (double t = 10.0; t <= 2000.0; t += 10.0) ruled.advance_to(t);
   EXPECT_GT(ruled.collisions_changed(), 0);
   EXPECT_GE(ruled.smallest_separation(), 1.0 - 1e-9);
+  // The TC rule alone (Luding & McNamara 1998; t_c = 0.1, a tenth of the mean free time at T0)
+  // also runs it through: impacts within t_c of a disk's previous one are elastic, and only
+  // those are changed.
+  EventDrivenOptions tc = off;
+  tc.contact_duration = 0.1;
+  EventDrivenEngine timed(tc);
+  timed.set_up(sample_particles(scene, hydro::uniform_fields(), 2));
+  for (double t = 10.0; t <= 2000.0; t += 10.0) timed.advance_to(t);
+  EXPECT_GT(timed.collisions_made_elastic(), 0);
+  EXPECT_EQ(timed.collisions_made_elastic(), timed.collisions_changed());
+  EXPECT_GE(timed.smallest_separation(), 1.0 - 1e-9);
 }
 
 TEST(EventDrivenCli, MdHaffRunsWithTheEventDrivenEngine) {
