@@ -198,6 +198,10 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.collapse_speed", kReal, 0.01, closed_closed(0, 10),
        "event_driven: impact speed u0 (sqrt(T0/m)) below which the restitution rises to 1, "
        "Bizon et al. 1998 (ends inelastic collapse); 0 = off"},
+      {"md.contact_duration", kReal, 0.0, closed_closed(0, 1e6),
+       "event_driven: t_c of the TC model (Luding & McNamara 1998), MD time: an impact within "
+       "t_c of either disk's previous impact is elastic (ends inelastic collapse under load); "
+       "0 = off"},
       {"md.max_collision_rate", kReal, 1000.0, closed_closed(1, 1e9),
        "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
        "(event-rate runaway)"},

@@ -43,6 +43,8 @@ EventDrivenEngine::EventDrivenEngine(EventDrivenOptions options)
     : options_(std::move(options)), made_(std::chrono::steady_clock::now()) {
   if (!(options_.collapse_speed >= 0.0 && std::isfinite(options_.collapse_speed)))
     throw std::invalid_argument("md.collapse_speed must be >= 0");
+  if (!(options_.contact_duration >= 0.0 && std::isfinite(options_.contact_duration)))
+    throw std::invalid_argument("md.contact_duration must be >= 0");
   if (!(options_.max_collision_rate > 0.0))
     throw std::invalid_argument("md.max_collision_rate must be > 0");
   if (options_.virial_bins < 1) throw std::invalid_argument("md.bins must be >= 1");
@@ -64,6 +66,7 @@ std::unique_ptr<ParticleEngine> EventDrivenEngine::make(const ParticleEngineSetu
   o.box_width = setup.scene.box_width;
   o.particles = setup.scene.particles;
   o.collapse_speed = required_setting(setup.settings, "md.collapse_speed");
+  o.contact_duration = required_setting(setup.settings, "md.contact_duration");
   o.max_collision_rate = required_setting(setup.settings, "md.max_collision_rate");
   o.virial_bins = int(std::lround(required_setting(setup.settings, "md.bins")));
   o.comm = setup.comm;
@@ -102,6 +105,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
   }
   disks_.assign(std::size_t(n), Disk{});
   soonest_.assign(std::size_t(n), Soonest{});
+  last_impact_.assign(std::size_t(n), -kNever);
   id_.assign(std::size_t(n), 0);
   cells_->clear();
   for (int i = 0; i < n; ++i) {
@@ -130,7 +134,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
 void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
   tally_.clear();
-  events_ = collisions_ = crossings_ = changed_ = ordered_at_ = 0;
+  events_ = collisions_ = crossings_ = changed_ = tc_elastic_ = ordered_at_ = 0;
   ++runs_;
 }
 
@@ -140,22 +144,32 @@ double EventDrivenEngine::minimum_image(double d, double length) const {
   return d;
 }
 
+// A disk's coordinate lies in its own cell (cell changes and wraps happen at its crossings), so
+// the separation from a disk of a neighbouring cell is d = a - b in the cell's image: d - L or
+// d + L across the box's face (the same operations as minimum_image wherever the two agree,
+// i.e. with at least 4 cells along the side).
+double EventDrivenEngine::image(double d, int wrap, double length) {
+  if (wrap > 0) return d - length;
+  if (wrap < 0) return d + length;
+  return d;
+}
+
 void EventDrivenEngine::fly(Disk& d, double t) const {
   d.x += d.vx * (t - d.t);
   d.y += d.vy * (t - d.t);
   d.t = t;
 }
 
-// Touching a disk of `cell` (at its position now, computed without moving it) sooner than
-// the soonest collision found so far.
-void EventDrivenEngine::scan(int i, double now, int cell) {
+// Touching a disk of a neighbouring cell (at its position now, computed without moving it, in
+// that cell's periodic image) sooner than the soonest collision found so far.
+void EventDrivenEngine::scan(int i, double now, const PeriodicCells::Neighbour& cell) {
   const Disk& a = disks_[std::size_t(i)];
   Soonest& s = soonest_[std::size_t(i)];
-  for (int j = cells_->first(cell); j >= 0; j = cells_->next(j)) {
+  for (int j = cells_->first(cell.cell); j >= 0; j = cells_->next(j)) {
     if (j == i) continue;
     const Disk& b = disks_[std::size_t(j)];
-    const double dx = minimum_image(a.x - (b.x + b.vx * (now - b.t)), options_.box_length);
-    const double dy = minimum_image(a.y - (b.y + b.vy * (now - b.t)), options_.box_width);
+    const double dx = image(a.x - (b.x + b.vx * (now - b.t)), cell.wrap_x, options_.box_length);
+    const double dy = image(a.y - (b.y + b.vy * (now - b.t)), cell.wrap_y, options_.box_width);
     const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
     if (now + dt < s.t) {
       s.t = now + dt;
@@ -188,7 +202,7 @@ void EventDrivenEngine::schedule(int i, double now) {
 void EventDrivenEngine::predict(int i, double now) {
   fly(disks_[std::size_t(i)], now);
   soonest_[std::size_t(i)] = {kNever, -1, 0};
-  for (const int c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
+  for (const auto& c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
   schedule(i, now);
 }
 
@@ -202,7 +216,7 @@ void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int 
     return;
   }
   fly(disks_[std::size_t(i)], now);
-  for (const int c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
+  for (const auto& c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
   schedule(i, now);
 }
 
@@ -221,8 +235,16 @@ void EventDrivenEngine::collide(int i, int j, double now) {
   if (closing < 0.0) {
     const double distance = std::sqrt(separation2);
     const double approach = -closing / distance;
-    const double r = impact_restitution(options_.restitution, approach, options_.collapse_speed);
+    // The TC rule (Luding & McNamara 1998): an impact within t_c of either disk's previous one
+    // is elastic; otherwise the restitution of the collapse rule.
+    const double since = now - std::max(last_impact_[std::size_t(i)], last_impact_[std::size_t(j)]);
+    const bool within_contact = since < options_.contact_duration;
+    const double r = within_contact ? 1.0
+                                    : impact_restitution(options_.restitution, approach,
+                                                         options_.collapse_speed);
     if (r != options_.restitution) ++changed_, ++all_changed_;
+    if (within_contact && options_.restitution != 1.0) ++tc_elastic_, ++all_tc_elastic_;
+    last_impact_[std::size_t(i)] = last_impact_[std::size_t(j)] = now;
     const double k = normal_impulse(-closing, r) / separation2;  // J / |r|
     a.vx += k * dx;
     a.vy += k * dy;
@@ -287,7 +309,8 @@ double EventDrivenEngine::advance_to(double t) {
         why << "event-driven engine: event-rate runaway at t = " << now << " (from t = " << begin
             << " to " << t << ", " << segment_collisions_ << " collisions of " << disks_.size()
             << " disks, beyond md.max_collision_rate = " << options_.max_collision_rate
-            << " per disk and unit time): inelastic collapse; raise md.collapse_speed";
+            << " per disk and unit time): inelastic collapse; raise md.collapse_speed or set "
+               "md.contact_duration (TC rule)";
         throw std::runtime_error(why.str());
       }
     } else {
@@ -338,6 +361,7 @@ void EventDrivenEngine::order_by_cell() {
   const auto partner = [&](int j) { return j >= 0 ? renumbered[std::size_t(j)] : j; };
   std::vector<Disk> disks(n);
   std::vector<Soonest> soonest(n);
+  std::vector<double> last_impact(n);
   std::vector<int> id(n);
   std::vector<double> times(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -345,11 +369,13 @@ void EventDrivenEngine::order_by_cell() {
     disks[k] = disks_[i];
     soonest[k] = soonest_[i];
     soonest[k].partner = partner(soonest[k].partner);
+    last_impact[k] = last_impact_[i];
     id[k] = id_[i];
     times[k] = calendar_.time(int(i));
   }
   disks_.swap(disks);
   soonest_.swap(soonest);
+  last_impact_.swap(last_impact);
   id_.swap(id);
   calendar_.reset(times);
   cells_->clear();
@@ -392,8 +418,8 @@ double EventDrivenEngine::smallest_separation() const {
   double closest = kNever;
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
-    for (const int c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
-      for (int j = cells_->first(c); j >= 0; j = cells_->next(j)) {
+    for (const auto& c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
+      for (int j = cells_->first(c.cell); j >= 0; j = cells_->next(j)) {
         if (std::size_t(j) <= i) continue;
         const Disk& b = disks_[std::size_t(j)];
         const double dx = minimum_image(a.x - b.x, options_.box_length);
@@ -413,6 +439,8 @@ EngineState EventDrivenEngine::save_state(bool with_particles) {
                    {"collisions", double(collisions_)},
                    {"crossings", double(crossings_)},
                    {"changed", double(changed_)},
+                   {"tc_elastic", double(tc_elastic_)},
+                   {"all_tc_elastic", double(all_tc_elastic_)},
                    {"runs", double(runs_)},
                    {"all_events", double(all_events_)},
                    {"all_collisions", double(all_collisions_)},
@@ -444,6 +472,9 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   collisions_ = std::llround(get("collisions"));
   crossings_ = std::llround(get("crossings"));
   changed_ = std::llround(get("changed"));
+  // Absent from checkpoints written before the TC rule existed.
+  tc_elastic_ = number.count("tc_elastic") ? std::llround(get("tc_elastic")) : 0;
+  all_tc_elastic_ = number.count("all_tc_elastic") ? std::llround(get("all_tc_elastic")) : 0;
   runs_ = int(std::lround(get("runs")));
   all_events_ = std::llround(get("all_events"));
   all_collisions_ = std::llround(get("all_collisions"));
@@ -473,11 +504,17 @@ EngineDetails EventDrivenEngine::details() const {
       {"crossings", all_crossings_},
       {"collapse_rule.rule",
        std::string("restitution 1 - (1 - r)(u/u0)^(3/4) below impact speed u0 (Bizon et al., "
-                   "PRL 80, 57 (1998))")},
+                   "PRL 80, 57 (1998))") +
+           (options_.contact_duration > 0.0
+                ? "; elastic within t_c of either disk's previous impact (TC model, Luding & "
+                  "McNamara, Granular Matter 1, 113 (1998))"
+                : "")},
       {"collapse_rule.collapse_speed", options_.collapse_speed},
       {"collapse_rule.collisions_changed", all_changed_},
       {"collapse_rule.fraction_changed",
        all_collisions_ > 0 ? double(all_changed_) / double(all_collisions_) : 0.0},
+      {"collapse_rule.contact_duration", options_.contact_duration},
+      {"collapse_rule.collisions_made_elastic", all_tc_elastic_},
       {"max_collision_rate", options_.max_collision_rate},
       {"cells.columns", static_cast<long long>(cells_->columns())},
       {"cells.rows", static_cast<long long>(cells_->rows())}};

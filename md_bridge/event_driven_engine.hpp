@@ -27,6 +27,7 @@ struct EventDrivenOptions {
   long long particles = 0;
   double collapse_speed = 0.0;      // md.collapse_speed: u0 of impact_restitution
   double max_collision_rate = 0.0;  // md.max_collision_rate: per particle per unit MD time
+  double contact_duration = 0.0;    // md.contact_duration: t_c of the TC model (0: off)
   int virial_bins = 1;              // md.bins: the collision virial per bin along x
   MPI_Comm comm = MPI_COMM_WORLD;
 };
@@ -46,7 +47,8 @@ class EventDrivenEngine final : public ParticleEngine {
  public:
   // Throws std::invalid_argument (naming the md.* key or the box) for settings it cannot run.
   explicit EventDrivenEngine(EventDrivenOptions options);
-  // From the registry: the scene and the keys md.collapse_speed, md.max_collision_rate, md.bins.
+  // From the registry: the scene and the keys md.collapse_speed, md.contact_duration,
+  // md.max_collision_rate, md.bins.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
 
   std::string name() const override { return "event_driven"; }
@@ -87,6 +89,7 @@ class EventDrivenEngine final : public ParticleEngine {
   const CollisionVirial& collision_virial() const { return virial_; }
   long long collisions() const { return collisions_; }  // of this run
   long long collisions_changed() const { return changed_; }
+  long long collisions_made_elastic() const { return tc_elastic_; }  // by the TC rule
   // Current time and the disks' positions and velocities (xyz triplets) at it.
   double time() const { return t_; }
   // The smallest centre distance of any two disks now (sigma = 1 means touching).
@@ -118,7 +121,7 @@ class EventDrivenEngine final : public ParticleEngine {
   // did), or after it entered a new cell from the three cells that joined the neighbourhood.
   void predict(int i, double now);
   void predict_after_crossing(int i, double now, int axis, int direction);
-  void scan(int i, double now, int cell);
+  void scan(int i, double now, const PeriodicCells::Neighbour& cell);
   void schedule(int i, double now);
   void collide(int i, int j, double now);
   void cross(int i, int axis, double now);
@@ -126,7 +129,10 @@ class EventDrivenEngine final : public ParticleEngine {
   // Renumbers the disks in the order of their cells (cells, calendar and partners follow), so
   // that the disks of neighbouring cells lie near each other in memory as the gas mixes.
   void order_by_cell();
+  // The nearest image of a separation d along a side of the given length: for disks at contact.
   double minimum_image(double d, double length) const;
+  // The separation d = a - b of a disk b of a neighbouring cell, in that cell's image (wrap).
+  static double image(double d, int wrap, double length);
 
   EventDrivenOptions options_;
   std::chrono::steady_clock::time_point made_;
@@ -134,17 +140,21 @@ class EventDrivenEngine final : public ParticleEngine {
   int rank_ = 0;
   std::vector<Disk> disks_;  // in cell order after each order_by_cell
   std::vector<Soonest> soonest_;
+  // Time of each disk's last impact, for the TC rule (-infinity before its first in this
+  // engine; a resumed run starts without that history).
+  std::vector<double> last_impact_;
   std::vector<int> id_;  // particle ID of each disk
   std::unique_ptr<PeriodicCells> cells_;
   EventCalendar calendar_;
   std::vector<double> x_, v_, mass_;  // the disks at t_ (xyz), for the run loop
   double t_ = 0.0;
   // This run.
-  long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0;
+  long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0, tc_elastic_ = 0;
   long long ordered_at_ = 0;  // events_ when the disks were last put in cell order
   // Over every run.
   int runs_ = 0;
-  long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0;
+  long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0,
+            all_tc_elastic_ = 0;
   double approach_sum_ = 0.0, recoil_sum_ = 0.0;  // of the normal speeds, for r measured
   // The interval being accumulated and the last one finished.
   std::vector<double> virial_sum_;  // sum of sigma J per bin

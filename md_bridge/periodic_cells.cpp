@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace granvv::md {
 
@@ -37,24 +38,42 @@ int PeriodicCells::cell_at(double x, double y) const {
   return cy * nx_ + cx;
 }
 
-std::array<int, 9> PeriodicCells::neighbourhood(int cell) const {
+namespace {
+
+// Column (or row) c + offset of n, and the image of its members: +1 past the last, -1 before
+// the first.
+std::pair<int, int> wrapped(int c, int n) {
+  if (c < 0) return {c + n, -1};
+  if (c >= n) return {c - n, 1};
+  return {c, 0};
+}
+
+}  // namespace
+
+PeriodicCells::Neighbour PeriodicCells::neighbour(int cx, int cy) const {
+  const auto [x, wrap_x] = wrapped(cx, nx_);
+  const auto [y, wrap_y] = wrapped(cy, ny_);
+  return {y * nx_ + x, wrap_x, wrap_y};
+}
+
+std::array<PeriodicCells::Neighbour, 9> PeriodicCells::neighbourhood(int cell) const {
   const int cx = cell % nx_, cy = cell / nx_;
-  std::array<int, 9> around{};
+  std::array<Neighbour, 9> around{};
   int k = 0;
   for (int dy = -1; dy <= 1; ++dy) {
-    const int y = (cy + dy + ny_) % ny_;
-    for (int dx = -1; dx <= 1; ++dx) around[std::size_t(k++)] = y * nx_ + (cx + dx + nx_) % nx_;
+    for (int dx = -1; dx <= 1; ++dx) around[std::size_t(k++)] = neighbour(cx + dx, cy + dy);
   }
   return around;
 }
 
-std::array<int, 3> PeriodicCells::entering(int cell, int axis, int direction) const {
+std::array<PeriodicCells::Neighbour, 3> PeriodicCells::entering(int cell, int axis,
+                                                                int direction) const {
   const int cx = cell % nx_, cy = cell / nx_;
-  std::array<int, 3> joined{};
+  std::array<Neighbour, 3> joined{};
   for (int k = -1; k <= 1; ++k) {
     const int x = axis == 0 ? cx + direction : cx + k;
     const int y = axis == 0 ? cy + k : cy + direction;
-    joined[std::size_t(k + 1)] = ((y + ny_) % ny_) * nx_ + (x + nx_) % nx_;
+    joined[std::size_t(k + 1)] = neighbour(x, y);
   }
   return joined;
 }

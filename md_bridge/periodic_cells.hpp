@@ -23,11 +23,20 @@ class PeriodicCells {
   // Lower edges of a cell.
   double x_low(int cell) const { return -0.5 * lx_ + (cell % nx_) * wx_; }
   double y_low(int cell) const { return -0.5 * ly_ + (cell / nx_) * wy_; }
+  // A cell next to another, and the periodic image in which its members lie next to it: seen
+  // from the centre cell, a member at (x, y) is at (x + wrap_x Lx, y + wrap_y Ly). The image is
+  // the cell's, not the nearest one: with 3 cells along a side, neighbours in adjacent cells can
+  // be up to 2 cell widths = 2/3 of the box apart, farther than half the box, and the nearest
+  // image of such a pair is not the one in which they can touch.
+  struct Neighbour {
+    int cell;
+    int wrap_x, wrap_y;  // -1, 0 or +1
+  };
   // The nine cells around a cell (itself included), periodic.
-  std::array<int, 9> neighbourhood(int cell) const;
+  std::array<Neighbour, 9> neighbourhood(int cell) const;
   // The three cells that join the neighbourhood of `cell` when a particle has just entered it
   // along axis 0 (x) or 1 (y) in `direction`: the far row or column of its new neighbourhood.
-  std::array<int, 3> entering(int cell, int axis, int direction) const;
+  std::array<Neighbour, 3> entering(int cell, int axis, int direction) const;
   // The cell next to `cell` across its face: axis 0 (x) or 1 (y), direction +1 or -1; and
   // whether that step wraps around the box (then the position moves by -direction L).
   int across(int cell, int axis, int direction, bool& wraps) const;
@@ -41,6 +50,8 @@ class PeriodicCells {
   int next(int particle) const { return next_[std::size_t(particle)]; }
 
  private:
+  // The cell at column cx, row cy of the periodic grid (each at most one step outside it).
+  Neighbour neighbour(int cx, int cy) const;
   void remove(int particle);
   double lx_, ly_, wx_, wy_;
   int nx_, ny_;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
@@ -65,13 +66,84 @@ TEST(HardDiskCollision, RestitutionRisesToOneBelowTheCollapseSpeed) {
 TEST(EventDrivenEngine, HeadOnCollisionHasTheRestitutionAndTheRegistryMakesIt) {
   ParticleEngineSetup setup;
   setup.scene = scene_from_particles(400, 0.05, 50.0, 0.8);
-  setup.settings = {{"md.collapse_speed", 0.01}, {"md.max_collision_rate", 1000}, {"md.bins", 4}};
+  setup.settings = {{"md.collapse_speed", 0.01},
+                    {"md.contact_duration", 0.0},
+                    {"md.max_collision_rate", 1000},
+                    {"md.bins", 4}};
   const auto engine = make_particle_engine("event_driven", setup);
   EXPECT_EQ(engine->name(), "event_driven");
   const CollisionRuleCheck check = engine->check_collision_rule();
   EXPECT_NEAR(check.restitution, 0.8, 1e-14);
   setup.settings.erase("md.collapse_speed");
   EXPECT_THROW(make_particle_engine("event_driven", setup), std::invalid_argument);
+}
+
+// A box only three cells wide (the paper's scene: Ly = 10 sigma, cells of 10/3): two disks in
+// adjacent rows can then be up to 2/3 of the box apart, and the nearest image of such a pair is
+// not the one in which they touch. Here disk A at y = -0.8 (middle row) and disk B at y = 4.5
+// (top row), 0.3 apart in x, close at 0.2 in the direct image (5.3 apart; the nearest image,
+// 4.7 through the face, is receding). They touch when dy = sqrt(1 - 0.3^2), at
+// t = (5.3 - 0.9539) / 0.2 = 21.73, before either leaves its row (A at t = 24.7, B at 28.3).
+// Scanning in the nearest image (the engine before this test) missed that collision and let the
+// two pass through each other; the same along x.
+TEST(EventDrivenEngine, DisksOfAdjacentCellsCollideInTheCellsImageInABoxThreeCellsWide) {
+  MpiEnvironment::ensure();
+  for (const int axis : {0, 1}) {
+    EventDrivenOptions o;
+    o.restitution = 1.0;
+    o.box_length = 10.0;
+    o.box_width = 10.0;
+    o.particles = 2;
+    o.max_collision_rate = 1000.0;
+    o.comm = MPI_COMM_SELF;
+    EventDrivenEngine engine(o);
+    // (along, across) -> (x, y) for axis 1; swapped for axis 0.
+    const auto place = [&](double across, double along) {
+      return axis == 1 ? std::vector<double>{across, along, 0.0}
+                       : std::vector<double>{along, across, 0.0};
+    };
+    ParticleSample sample;
+    for (const auto& [x, v] : {std::pair{place(0.0, -0.8), place(0.0, 0.1)},
+                               std::pair{place(0.3, 4.5), place(0.0, -0.1)}}) {
+      sample.x.insert(sample.x.end(), x.begin(), x.end());
+      sample.v.insert(sample.v.end(), v.begin(), v.end());
+    }
+    engine.set_up(sample);
+    const double contact = (5.3 - std::sqrt(1.0 - 0.09)) / 0.2;
+    engine.advance_to(contact - 1e-6);
+    EXPECT_EQ(engine.collisions(), 0) << "axis " << axis;
+    EXPECT_GT(engine.smallest_separation(), 1.0) << "axis " << axis;
+    engine.advance_to(contact + 1e-6);
+    EXPECT_EQ(engine.collisions(), 1) << "axis " << axis;
+    for (double t = 22.0; t <= 30.0; t += 1.0) {
+      engine.advance_to(t);
+      EXPECT_GE(engine.smallest_separation(), 1.0 - 1e-9) << "axis " << axis << ", t = " << t;
+    }
+  }
+}
+
+// The same geometry in a gas: an elastic channel Ly = 10 sigma (three rows of cells) at
+// phi = 0.05 over 2e5 collisions keeps every pair apart and its energy.
+TEST(EventDrivenEngine, ElasticGasInAChannelThreeCellsWideHasNoOverlaps) {
+  MpiEnvironment::ensure();
+  const ParticleScene scene = scene_from_particles(2000, 0.05, 10.0, 1.0);
+  EventDrivenOptions o = options_for(scene);
+  EventDrivenEngine engine(o);
+  engine.set_up(sample_particles(scene, hydro::uniform_fields(), 5));
+  const auto energy = [&] {
+    double e = 0.0;
+    const ParticleFrame f = engine.gather_frame();
+    for (const double v : f.v) e += 0.5 * v * v;
+    return e;
+  };
+  const double e0 = energy();
+  double t = 0.0;
+  while (engine.collisions() < 200'000) {
+    t += 5.0;
+    engine.advance_to(t);
+    ASSERT_GE(engine.smallest_separation(), 1.0 - 1e-9) << "t = " << t;
+  }
+  EXPECT_LT(std::abs(energy() / e0 - 1.0), 1e-12);
 }
 
 // An elastic gas (r = 1) over 5e5 collisions dilute and 5e5 dense: energy to 1e-12 relative,
@@ -248,9 +320,9 @@ TEST(EventDrivenEngine, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne
   EXPECT_THROW(fresh.restore_state(wrong), std::invalid_argument);
 }
 
-// Inelastic collapse with the rule off: r = 0.3 in a dense gas collapses, and the segment stops
-// with the runaway named instead of running on; with the rule on (u0 = 0.01) the same gas
-// runs through, with the changed collisions counted.
+// Inelastic collapse with the rules off: r = 0.3 in a dense gas collapses, and the segment stops
+// with the runaway named instead of running on; with the collapse rule on (u0 = 0.01), or the TC
+// rule alone, the same gas runs through, with the changed collisions counted.
 TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt) {
   MpiEnvironment::ensure();
   const ParticleScene scene = scene_from_particles(1000, 0.4, 20.0, 0.3);
@@ -265,13 +337,24 @@ TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt)
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("event-rate runaway"), std::string::npos) << e.what();
   }
+  const auto run_through = [&](const EventDrivenOptions& o) {
+    auto engine = std::make_unique<EventDrivenEngine>(o);
+    engine->set_up(sample_particles(scene, hydro::uniform_fields(), 2));
+    for (double t = 10.0; t <= 2000.0; t += 10.0) engine->advance_to(t);
+    EXPECT_GE(engine->smallest_separation(), 1.0 - 1e-9);
+    return engine;
+  };
   EventDrivenOptions on = off;
   on.collapse_speed = 0.01;
-  EventDrivenEngine ruled(on);
-  ruled.set_up(sample_particles(scene, hydro::uniform_fields(), 2));
-  for (double t = 10.0; t <= 2000.0; t += 10.0) ruled.advance_to(t);
-  EXPECT_GT(ruled.collisions_changed(), 0);
-  EXPECT_GE(ruled.smallest_separation(), 1.0 - 1e-9);
+  EXPECT_GT(run_through(on)->collisions_changed(), 0);
+  // The TC rule alone (Luding & McNamara 1998; t_c = 0.1, about 0.4 of the Enskog mean free
+  // time at T0 and phi = 0.4) also runs it through: impacts within t_c of a disk's previous one
+  // are elastic, and only those are changed.
+  EventDrivenOptions tc = off;
+  tc.contact_duration = 0.1;
+  const auto timed = run_through(tc);
+  EXPECT_GT(timed->collisions_made_elastic(), 0);
+  EXPECT_EQ(timed->collisions_made_elastic(), timed->collisions_changed());
 }
 
 TEST(EventDrivenCli, MdHaffRunsWithTheEventDrivenEngine) {
