@@ -30,12 +30,10 @@ atlas::JudgedHydro judge(const AtlasScene& scene, const AtlasRun& hydro, const A
       hydro.times.size() != scene.times.size()) {
     return j;
   }
-  std::vector<std::string> names = {"n", "v_x", "T"};
-  if (scene.transverse) names.insert(names.begin() + 2, "v_y");
   const compare::VerdictRule rule{compare::kClearSignalToNoise, scene.sigmas};
-  const compare::SideBySide s =
-      compare::judge_side_by_side(*particles.fields, *hydro.fields, names, scene.sigmas,
-                                  scene.agreement_fraction, scene.signal_to_noise, rule);
+  const compare::SideBySide s = compare::judge_side_by_side(
+      *particles.fields, *hydro.fields, compare::compared_fields(scene.transverse), scene.sigmas,
+      scene.agreement_fraction, scene.signal_to_noise, rule);
   j.finished = true;
   j.model_disagreement = s.kind == compare::Disagreement::model_clear_signal ||
                          s.kind == compare::Disagreement::model_box_offset;

@@ -266,12 +266,10 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
   const fields::ModelResult particles = particle_result(md, md_out, mean.fields);
   const fields::ModelResult continuum = hydro_result(hydro, hydro_out, bins);
   // The output times both reached: each particle snapshot against the hydro's at that time.
-  std::vector<std::string> names = {"n", "v_x", "T"};
-  if (hydro.transverse) names.insert(names.begin() + 2, "v_y");
   out.signal_to_noise = initial_signal_to_noise(md).ratio();
   const compare::SideBySide judged = compare::judge_side_by_side(
-      *particles.fields, *continuum.fields, names, scene.sigmas, scene.agreement_fraction,
-      out.signal_to_noise, scene.verdict_rule);
+      *particles.fields, *continuum.fields, compare::compared_fields(hydro.transverse),
+      scene.sigmas, scene.agreement_fraction, out.signal_to_noise, scene.verdict_rule);
   const auto& pairs = judged.pairs;
   for (const auto& track : judged.tracks) {
     FieldComparison f;

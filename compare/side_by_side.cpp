@@ -6,6 +6,11 @@
 
 namespace granvv::compare {
 
+std::vector<std::string> compared_fields(bool transverse) {
+  if (transverse) return {"n", "v_x", "v_y", "T"};
+  return {"n", "v_x", "T"};
+}
+
 SideBySide judge_side_by_side(const fields::FieldSeries& particles,
                               const fields::FieldSeries& hydro,
                               const std::vector<std::string>& field_names, double sigmas,

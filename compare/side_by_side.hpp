@@ -22,6 +22,10 @@ struct SideBySide {
   Disagreement kind = Disagreement::none;
 };
 
+// The fields a side-by-side comparison weighs: n, v_x, T, and v_y when the hydro carries the
+// transverse flow.
+std::vector<std::string> compared_fields(bool transverse);
+
 // The particles' ensemble mean (with the standard errors of that mean) against the hydro on
 // the same bins, at the times both have. signal_to_noise is the particles' initial one.
 SideBySide judge_side_by_side(const fields::FieldSeries& particles,

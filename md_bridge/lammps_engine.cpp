@@ -90,12 +90,16 @@ CollisionRuleCheck LammpsEngine::check_collision_rule() {
   return {m.restitution, what.str()};
 }
 
-void LammpsEngine::open_session(const ParticleSample& sample) {
+void LammpsEngine::new_session() {
   lmp_.reset();  // one LAMMPS instance at a time
   LammpsSessionOptions session;
   session.log_file = options_.log_file;
   session.comm = options_.comm;
   lmp_ = std::make_unique<LammpsSession>(std::move(session));
+}
+
+void LammpsEngine::open_session(const ParticleSample& sample) {
+  new_session();
   set_up_disk_gas(*lmp_, options_.box_length, options_.box_width, sample, contact_);
   add_stress_computes();
 }
@@ -121,11 +125,7 @@ void LammpsEngine::set_up_sampled(const RangeSampler& sample) {
     first_final_ = contact_;
     first_final_speed_ = speed_;
   }
-  lmp_.reset();  // one LAMMPS instance at a time
-  LammpsSessionOptions session;
-  session.log_file = options_.log_file;
-  session.comm = options_.comm;
-  lmp_ = std::make_unique<LammpsSession>(std::move(session));
+  new_session();
   create_disk_box(*lmp_, options_.box_length, options_.box_width);
   const auto [x_lo, x_hi] = lammps_subdomain_x(*lmp_);
   const ParticleSample particles = sample(x_lo, x_hi);

@@ -89,6 +89,8 @@ class LammpsEngine final : public ParticleEngine {
   LammpsEngineOptions options_;
   std::chrono::steady_clock::time_point made_;
   std::unique_ptr<LammpsSession> lmp_;
+  // A fresh LAMMPS instance on the engine's communicator (the old one closed first).
+  void new_session();
   void open_session(const ParticleSample& sample);
   void add_stress_computes();  // and the thermo line that tallies them
   ContactModel contact_;

@@ -110,6 +110,30 @@ Profile tabulate(const ParticleScene& scene, const hydro::InitialFields& f) {
   return p;
 }
 
+// One disk's velocity at scaled position xs: the local flow plus a Maxwellian of the local
+// temperature (T = m <c_x^2> per component), appended as an xyz triplet.
+void append_velocity(std::vector<double>& v, const hydro::InitialFields& f, double xs,
+                     Uniform& uniform) {
+  const double thermal = std::sqrt(std::max(f.T(xs), 0.0));
+  v.insert(v.end(), {f.v(xs) + thermal * uniform.normal(),
+                     (f.vy ? f.vy(xs) : 0.0) + thermal * uniform.normal(), 0.0});
+}
+
+[[noreturn]] void no_free_spot(long long particle, long long particles) {
+  throw std::invalid_argument("no free spot for particle " + std::to_string(particle) + " of " +
+                              std::to_string(particles) + " after " + std::to_string(kMaxTries) +
+                              " tries: the scene is too dense to place without overlap");
+}
+
+// Total momentum as the fields carry it, N <v> with <v> = int n v dx / int n dx: one shift of
+// every velocity (xyz triplets) from the sample's momentum (px, py) of its n disks.
+void shift_to_field_momentum(std::vector<double>& v, const Profile& profile, double px, double py,
+                             double n) {
+  const double shift_x = profile.momentum_x / profile.total - px / n,
+               shift_y = profile.momentum_y / profile.total - py / n;
+  for (std::size_t i = 0; i < v.size(); i += 3) v[i] += shift_x, v[i + 1] += shift_y;
+}
+
 // The whole box from one stream (a box of one strip): the sampler as it was before strips.
 ParticleSample sample_whole_box(const ParticleScene& scene, const hydro::InitialFields& f,
                                 std::uint64_t seed) {
@@ -131,23 +155,14 @@ ParticleSample sample_whole_box(const ParticleScene& scene, const hydro::Initial
       if (!grid.free(x, y, s.x)) continue;
       grid.add(x, y, int(p));
       s.x.insert(s.x.end(), {x, y, 0.0});
-      const double thermal = std::sqrt(std::max(f.T(xs), 0.0));  // T = m <c_x^2> per component
-      s.v.insert(s.v.end(), {f.v(xs) + thermal * uniform.normal(),
-                             (f.vy ? f.vy(xs) : 0.0) + thermal * uniform.normal(), 0.0});
+      append_velocity(s.v, f, xs, uniform);
       placed = true;
     }
-    if (!placed) {
-      throw std::invalid_argument("no free spot for particle " + std::to_string(p) + " of " +
-                                  std::to_string(n) + " after " + std::to_string(kMaxTries) +
-                                  " tries: the scene is too dense to place without overlap");
-    }
+    if (!placed) no_free_spot(p, n);
   }
-  // Total momentum as the fields carry it: N <v> with <v> = int n v dx / int n dx.
   double px = 0.0, py = 0.0;
   for (long long p = 0; p < n; ++p) px += s.v[3 * p], py += s.v[3 * p + 1];
-  const double shift_x = profile.momentum_x / total - px / n,
-               shift_y = profile.momentum_y / total - py / n;
-  for (long long p = 0; p < n; ++p) s.v[3 * p] += shift_x, s.v[3 * p + 1] += shift_y;
+  shift_to_field_momentum(s.v, profile, px, py, double(n));
   return s;
 }
 
@@ -282,19 +297,12 @@ class StripSampler {
         if (!(x >= lo && x < hi) || !grid.free(x, y)) continue;
         grid.add(x, y);
         s.x.insert(s.x.end(), {x, y, 0.0});
-        const double thermal = std::sqrt(std::max(f_.T(xs), 0.0));
-        s.v.insert(s.v.end(), {f_.v(xs) + thermal * uniform.normal(),
-                               (f_.vy ? f_.vy(xs) : 0.0) + thermal * uniform.normal(), 0.0});
+        append_velocity(s.v, f_, xs, uniform);
         s.px += s.v[s.v.size() - 3];
         s.py += s.v[s.v.size() - 2];
         placed = true;
       }
-      if (!placed) {
-        throw std::invalid_argument(
-            "no free spot for particle " + std::to_string(strips_.first[std::size_t(k)] + p) +
-            " of " + std::to_string(scene_.particles) + " after " + std::to_string(kMaxTries) +
-            " tries: the scene is too dense to place without overlap");
-      }
+      if (!placed) no_free_spot(strips_.first[std::size_t(k)] + p, scene_.particles);
     }
     return done_.emplace(k, std::move(s)).first->second;
   }
@@ -350,18 +358,14 @@ ParticleSample sample_particles_in(const ParticleScene& scene, const hydro::Init
     momenta[2 * std::size_t(k) + 1] = s.py;
   }
   if (combine) combine(momenta);
-  // Total momentum as the fields carry it, N <v> with <v> = int n v dx / int n dx, summed over
-  // the strips in their order (the same on every rank).
+  // The momentum summed over the strips in their order (the same on every rank).
   double px = 0.0, py = 0.0;
   for (int k = 0; k < strips.count; ++k) {
     if (!std::isfinite(momenta[2 * std::size_t(k)]))
       throw std::logic_error("sample_particles_in: no rank sampled strip " + std::to_string(k));
     px += momenta[2 * std::size_t(k)], py += momenta[2 * std::size_t(k) + 1];
   }
-  const double n = double(scene.particles);
-  const double shift_x = profile.momentum_x / profile.total - px / n,
-               shift_y = profile.momentum_y / profile.total - py / n;
-  for (std::size_t i = 0; i < out.v.size(); i += 3) out.v[i] += shift_x, out.v[i + 1] += shift_y;
+  shift_to_field_momentum(out.v, profile, px, py, double(scene.particles));
   return out;
 }
 }  // namespace granvv::md

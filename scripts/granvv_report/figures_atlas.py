@@ -271,7 +271,8 @@ POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "cooling_f
                  "smallest ε from which every larger ε on the grid ({grid}) is flagged as a model disagreement "
                  "that the unperturbed hydro does not have; a triangle at the top means no ε up to the largest "
                  "was caught. A grey cross at the bottom marks a particle run against which the unperturbed hydro "
-                 "is itself flagged as a model disagreement: only an earlier parting can then count. The particle cost is N × ensemble, the disks simulated ({per} per member)."))
+                 "is itself flagged as a model disagreement: only an earlier parting can then count. The particle "
+                 "cost is N × ensemble, the disks simulated ({per} per member)."))
 def fig_comparison_power(run):
     power = run.atlas("comparison_power")
     if not isinstance(power, dict) or not power.get("particles"):
@@ -287,6 +288,7 @@ def fig_comparison_power(run):
     for key in power.get("keys") or []:
         color = POWER_COLOR.get(key, "k")
         for direction, ls in (("up", "-"), ("down", "--")):
+            label = f"{key.replace('_factor', '')} {'×' if direction == 'up' else '÷'} (1 + ε)"
             x, y, missed = [], [], []
             for r in rows:
                 d = ((r.get("detectable") or {}).get(key) or {}).get(direction)
@@ -295,17 +297,14 @@ def fig_comparison_power(run):
                 else:
                     x.append(cost[id(r)])
                     y.append(d)
-            label = f"{key.replace('_factor', '')} {'×' if direction == 'up' else '÷'} (1 + ε)"
+                what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
+                members = (r.get("setting") or {}).get("ensemble")
+                measured.append((f"{label}, {members} members ({fmt(r['wall_seconds'], 3)} s)", what, None))
             if x:
                 ax.plot(x, y, ls=ls, marker="o", color=color, mfc=color if direction == "up" else "none", label=label)
             if missed:
                 ax.scatter(missed, [top] * len(missed), marker="^", color=color,
                            facecolors=color if direction == "up" else "none", label=None if x else label + " (none caught)")
-            for r in rows:
-                d = ((r.get("detectable") or {}).get(key) or {}).get(direction)
-                what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
-                members = (r.get("setting") or {}).get("ensemble")
-                measured.append((f"{label}, {members} members ({fmt(r['wall_seconds'], 3)} s)", what, None))
     flagged = [cost[id(r)] for r in rows if (r.get("unperturbed") or {}).get("disagreement") == "model"]
     if flagged:
         bottom = min(eps) / 1.6 if eps else 1e-3
