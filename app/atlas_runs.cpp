@@ -1,9 +1,11 @@
 #include "app/atlas_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "app/atomic_file.hpp"
@@ -210,6 +212,20 @@ void take_collisional_pressure(const MdScene& md, const MdOutcome& outcome, Atla
   run.scalars["pressure"] = p.mean[0], run.scalar_errors["pressure"] = p.standard_error[0];
   run.scalars["compressibility"] = z.mean[0];
   run.scalar_errors["compressibility"] = z.standard_error[0];
+}
+
+// A deterministic model too quick to time in one run (below kShortestTimed) is run again, up to
+// kTimingRepeats times in all, and costs its fastest run: in a run of microseconds one context
+// switch or page fault would otherwise decide which model is the cheapest.
+constexpr double kShortestTimed = 1e-3;
+constexpr int kTimingRepeats = 50;
+void time_by_fastest(fields::ModelCost& cost, const std::function<fields::ModelCost()>& rerun) {
+  double spent = cost.wall_seconds;
+  for (int k = 1; k < kTimingRepeats && spent < kShortestTimed; ++k) {
+    const double again = rerun().wall_seconds;
+    spent += again;
+    cost.wall_seconds = std::min(cost.wall_seconds, again);
+  }
 }
 
 // A particle run that threw, in the atlas's failure names (app/atlas_runs.hpp).
@@ -431,15 +447,20 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
           if (crossing) run.monitor_crossings[d.name] = crossing->time;
         }
         take_result(scene, r, run);
+        time_by_fastest(run.cost, [&] { return HydroModel(hydro, scene.bins).run().cost; });
       } else if (setting.model == "haff_ode") {
-        take_result(scene, make_haff_model(hydro.physics, scene.times, scene.bins)->run(), run);
+        auto haff = [&] { return make_haff_model(hydro.physics, scene.times, scene.bins)->run(); };
+        take_result(scene, haff(), run);
+        time_by_fastest(run.cost, [&] { return haff().cost; });
         run.status = "ok";
       } else {
-        take_result(scene,
-                    make_inertia_model(hydro.initial, hydro.physics, scene.times, scene.bins,
-                                       scene.crossing_levels)
-                        ->run(),
-                    run);
+        auto inertia = [&] {
+          return make_inertia_model(hydro.initial, hydro.physics, scene.times, scene.bins,
+                                    scene.crossing_levels)
+              ->run();
+        };
+        take_result(scene, inertia(), run);
+        time_by_fastest(run.cost, [&] { return inertia().cost; });
         run.status = "ok";
       }
     }
