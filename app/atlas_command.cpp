@@ -424,6 +424,7 @@ int atlas_command(const AtlasOptions& options) {
     scene.name = config.name();
     scene.particles = config.boolean("md.enabled");
     scene.bins = config.int_value("atlas.bins");
+    scene.collapse_rule_limit = config.real("atlas.collapse_rule_limit");
     scene.case_cells = hydro.cells;
     scene.case_cfl = hydro.control.time_step.cfl;
     scene.case_dt_max = hydro.control.time_step.dt_max;

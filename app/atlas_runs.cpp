@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <variant>
 
 #include "app/atomic_file.hpp"
 #include "app/case_config.hpp"
@@ -228,6 +229,22 @@ void time_by_fastest(fields::ModelCost& cost, const std::function<fields::ModelC
   }
 }
 
+// The event-driven engine's share of collisions whose restitution its collapse rules changed
+// (md_bridge/hard_disk_collision.hpp), as its summary detail and as the atlas keeps it.
+constexpr const char* kCollapseRuleDetail = "collapse_rule.fraction_changed";
+constexpr const char* kCollapseRuleScalar = "collapse_rule_fraction_changed";
+
+// A finished particle run whose collapse rules changed more than the limit of its collisions
+// is no longer the hard-disk gas of constant r (docs/atlas.md): judged here, after the cache,
+// so that the limit (an [atlas] key) can change without running it again.
+void judge_collapse_rule(AtlasRun& run, double limit) {
+  const auto f = run.scalars.find(kCollapseRuleScalar);
+  if (run.status != "ok" || f == run.scalars.end() || !(f->second > limit)) return;
+  run.status = "collapse_rule_active";
+  run.reason = "the collapse rules changed the restitution of " + format_real(f->second) +
+               " of all collisions, above atlas.collapse_rule_limit = " + format_real(limit);
+}
+
 // A particle run that threw, in the atlas's failure names (app/atlas_runs.hpp).
 std::string particle_failure(const std::string& what) {
   if (what.find("misses md.restitution") != std::string::npos) return "restitution_check_missed";
@@ -409,7 +426,10 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
       try {
         json j;
         in >> j;
-        if (auto cached = run_from_json(j, setting)) return *cached;
+        if (auto cached = run_from_json(j, setting)) {
+          judge_collapse_rule(*cached, scene.collapse_rule_limit);
+          return *cached;
+        }
       } catch (const std::exception&) {
         // an unreadable cache file is run again and rewritten
       }
@@ -433,6 +453,10 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
       take_result(scene, r, run);
       take_energy_errors(scene, r, model.outcome(), run);
       take_collisional_pressure(*md, model.outcome(), run);
+      for (const auto& d : model.outcome().engine_details) {
+        if (d.key == kCollapseRuleDetail && std::holds_alternative<double>(d.value))
+          run.scalars[kCollapseRuleScalar] = std::get<double>(d.value);
+      }
       run.status = "ok";
     } else {
       const HydroScene hydro = atlas_hydro_scene(*config, scene);
@@ -480,6 +504,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     run.reason = e.what();
   }
   write_file_atomically(cache_file, run_json(run).dump() + "\n");
+  judge_collapse_rule(run, scene.collapse_rule_limit);
   return run;
 }
 

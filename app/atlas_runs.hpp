@@ -56,7 +56,9 @@ struct AtlasRun {
   // "ok", or how it failed: inadmissible_step, non_finite, step_underflow, closure_limit,
   // unresolved_singularity (a cell reached hydro.min_cell_width before the peak density reached
   // hydro.stop_density); for the particles restitution_check_missed, event_rate_runaway,
-  // engine_failed; refused (the case schema or the scene refused the setting); interrupted.
+  // collapse_rule_active (more than atlas.collapse_rule_limit of the collisions changed by the
+  // event-driven engine's collapse rules), engine_failed; refused (the case schema or the scene
+  // refused the setting); interrupted.
   std::string status;
   std::string reason;  // the model's own words
   fields::ModelCost cost;
@@ -100,6 +102,7 @@ struct AtlasScene {
   double md_t_end = 0.0, md_t_haff = 0.0;  // md.t_end and the kinetic-theory Haff time, MD units
   double t0_theory = 0.0;  // the Enskog kinetic-theory Haff time (with chi), scaled units
   double sigmas = 3.0;     // compare.sigmas: the allowance of σ-aware adequacy
+  double collapse_rule_limit = 0.01;  // atlas.collapse_rule_limit
   // What the side-by-side comparison of the comparison power needs: the case's own closure,
   // compare.agreement_fraction, the particles' initial signal-to-noise (app/md_scene.hpp) and
   // whether the hydro carries v_y (hydro.transverse_velocity).

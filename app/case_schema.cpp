@@ -202,6 +202,12 @@ std::vector<KeySpec> rows_without_initial() {
        "event_driven: t_c of the TC model (Luding & McNamara 1998), MD time: an impact within "
        "t_c of either disk's previous impact is elastic (ends inelastic collapse under load); "
        "0 = off"},
+      {"md.contact_speed", kReal, 0.0, closed_closed(0, 10),
+       "event_driven: the TC rule (md.contact_duration) applies only to impacts slower than this "
+       "(sqrt(T0/m)), those of a packing rather than of the gas; 0 = to every impact"},
+      {"md.elastic_speed", kReal, 0.0, closed_closed(0, 10),
+       "event_driven: impact speed delta (sqrt(T0/m)) below which an impact is elastic, Ben-Naim "
+       "et al. 1999 (ends inelastic collapse of a packing under load); 0 = off"},
       {"md.max_collision_rate", kReal, 1000.0, closed_closed(1, 1e9),
        "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
        "(event-rate runaway)"},
@@ -250,6 +256,9 @@ std::vector<KeySpec> rows_without_initial() {
        "factors on hydro.cfl, hydro.dt_max and hydro.max_compression ([] = 1/4, 1/2, 1, 2, 4)"},
       {"atlas.bins", kInteger, 64, closed_closed(4, 4096),
        "bins on which every model's fields are compared (a particle scene: md.bins)"},
+      {"atlas.collapse_rule_limit", kReal, 0.01, closed_closed(0, 1),
+       "event-driven runs whose collapse rules changed more than this fraction of the collisions "
+       "fail as collapse_rule_active"},
       {"atlas.ensembles", kIntegers, kEmpty, increasing(closed_closed(1, 1000)),
        "ensemble sizes of the event-driven engine ([] = 1, 2, 4, ..., 512 within the budget)"},
       {"atlas.max_overlaps", kReals, kEmpty, increasing(open_closed(0, 0.1)),

@@ -21,7 +21,7 @@ void elastic_gas(benchmark::State& state, double area_fraction) {
   o.box_length = scene.box_length;
   o.box_width = scene.box_width;
   o.particles = scene.particles;
-  o.collapse_speed = 0.0;
+  o.collapse.collapse_speed = 0.0;
   o.max_collision_rate = 1e6;
   o.comm = MPI_COMM_SELF;
   EventDrivenEngine engine(o);

@@ -41,10 +41,14 @@ double required_setting(const EngineSettings& settings, const std::string& key) 
 
 EventDrivenEngine::EventDrivenEngine(EventDrivenOptions options)
     : options_(std::move(options)), made_(std::chrono::steady_clock::now()) {
-  if (!(options_.collapse_speed >= 0.0 && std::isfinite(options_.collapse_speed)))
-    throw std::invalid_argument("md.collapse_speed must be >= 0");
-  if (!(options_.contact_duration >= 0.0 && std::isfinite(options_.contact_duration)))
-    throw std::invalid_argument("md.contact_duration must be >= 0");
+  const CollapseRule& rule = options_.collapse;
+  for (const auto& [key, value] : {std::pair{"md.collapse_speed", rule.collapse_speed},
+                                   std::pair{"md.contact_duration", rule.contact_duration},
+                                   std::pair{"md.elastic_speed", rule.elastic_speed},
+                                   std::pair{"md.contact_speed", rule.contact_speed}}) {
+    if (!(value >= 0.0 && std::isfinite(value)))
+      throw std::invalid_argument(std::string(key) + " must be >= 0 and finite");
+  }
   if (!(options_.max_collision_rate > 0.0))
     throw std::invalid_argument("md.max_collision_rate must be > 0");
   if (options_.virial_bins < 1) throw std::invalid_argument("md.bins must be >= 1");
@@ -65,8 +69,10 @@ std::unique_ptr<ParticleEngine> EventDrivenEngine::make(const ParticleEngineSetu
   o.box_length = setup.scene.box_length;
   o.box_width = setup.scene.box_width;
   o.particles = setup.scene.particles;
-  o.collapse_speed = required_setting(setup.settings, "md.collapse_speed");
-  o.contact_duration = required_setting(setup.settings, "md.contact_duration");
+  o.collapse.collapse_speed = required_setting(setup.settings, "md.collapse_speed");
+  o.collapse.contact_duration = required_setting(setup.settings, "md.contact_duration");
+  o.collapse.elastic_speed = required_setting(setup.settings, "md.elastic_speed");
+  o.collapse.contact_speed = required_setting(setup.settings, "md.contact_speed");
   o.max_collision_rate = required_setting(setup.settings, "md.max_collision_rate");
   o.virial_bins = int(std::lround(required_setting(setup.settings, "md.bins")));
   o.comm = setup.comm;
@@ -79,7 +85,8 @@ CollisionRuleCheck EventDrivenEngine::check_collision_rule() {
   alone.particles = 2;
   alone.comm = MPI_COMM_SELF;
   EventDrivenEngine pair(alone);
-  const double u = std::max(kCheckSpeed, 2.0 * options_.collapse_speed);
+  const double u = std::max(
+      {kCheckSpeed, 2.0 * options_.collapse.collapse_speed, 2.0 * options_.collapse.elastic_speed});
   // 1.5 sigma apart (at most half of any box the engine runs): they touch at t = 0.5 / u.
   pair.start({-0.75, 0.0, 0.0, 0.75, 0.0, 0.0}, {0.5 * u, 0.0, 0.0, -0.5 * u, 0.0, 0.0}, 0.0);
   pair.advance_to(1.0 / u);
@@ -88,8 +95,10 @@ CollisionRuleCheck EventDrivenEngine::check_collision_rule() {
   std::ostringstream what;
   what << "a head-on collision at approach speed " << u
        << " through the event-driven engine: r = " << r
-       << "; below md.collapse_speed = " << options_.collapse_speed
+       << "; below md.collapse_speed = " << options_.collapse.collapse_speed
        << " r rises to 1 (Bizon et al. 1998)";
+  if (options_.collapse.elastic_speed > 0.0)
+    what << ", below md.elastic_speed = " << options_.collapse.elastic_speed << " it is 1";
   return {r, what.str()};
 }
 
@@ -134,7 +143,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
 void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
   tally_.clear();
-  events_ = collisions_ = crossings_ = changed_ = tc_elastic_ = ordered_at_ = 0;
+  events_ = collisions_ = crossings_ = changed_ = tc_elastic_ = speed_elastic_ = ordered_at_ = 0;
   ++runs_;
 }
 
@@ -235,15 +244,14 @@ void EventDrivenEngine::collide(int i, int j, double now) {
   if (closing < 0.0) {
     const double distance = std::sqrt(separation2);
     const double approach = -closing / distance;
-    // The TC rule (Luding & McNamara 1998): an impact within t_c of either disk's previous one
-    // is elastic; otherwise the restitution of the collapse rule.
     const double since = now - std::max(last_impact_[std::size_t(i)], last_impact_[std::size_t(j)]);
-    const bool within_contact = since < options_.contact_duration;
-    const double r = within_contact ? 1.0
-                                    : impact_restitution(options_.restitution, approach,
-                                                         options_.collapse_speed);
+    const auto [r, elastic_by] =
+        collision_restitution(options_.restitution, approach, since, options_.collapse);
     if (r != options_.restitution) ++changed_, ++all_changed_;
-    if (within_contact && options_.restitution != 1.0) ++tc_elastic_, ++all_tc_elastic_;
+    if (options_.restitution != 1.0) {
+      if (elastic_by == ElasticBy::kContactDuration) ++tc_elastic_, ++all_tc_elastic_;
+      if (elastic_by == ElasticBy::kSpeed) ++speed_elastic_, ++all_speed_elastic_;
+    }
     last_impact_[std::size_t(i)] = last_impact_[std::size_t(j)] = now;
     const double k = normal_impulse(-closing, r) / separation2;  // J / |r|
     a.vx += k * dx;
@@ -309,8 +317,8 @@ double EventDrivenEngine::advance_to(double t) {
         why << "event-driven engine: event-rate runaway at t = " << now << " (from t = " << begin
             << " to " << t << ", " << segment_collisions_ << " collisions of " << disks_.size()
             << " disks, beyond md.max_collision_rate = " << options_.max_collision_rate
-            << " per disk and unit time): inelastic collapse; raise md.collapse_speed or set "
-               "md.contact_duration (TC rule)";
+            << " per disk and unit time): inelastic collapse; set md.elastic_speed (a packing "
+               "under load), raise md.collapse_speed or set md.contact_duration (TC rule)";
         throw std::runtime_error(why.str());
       }
     } else {
@@ -441,6 +449,8 @@ EngineState EventDrivenEngine::save_state(bool with_particles) {
                    {"changed", double(changed_)},
                    {"tc_elastic", double(tc_elastic_)},
                    {"all_tc_elastic", double(all_tc_elastic_)},
+                   {"speed_elastic", double(speed_elastic_)},
+                   {"all_speed_elastic", double(all_speed_elastic_)},
                    {"runs", double(runs_)},
                    {"all_events", double(all_events_)},
                    {"all_collisions", double(all_collisions_)},
@@ -475,6 +485,10 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   // Absent from checkpoints written before the TC rule existed.
   tc_elastic_ = number.count("tc_elastic") ? std::llround(get("tc_elastic")) : 0;
   all_tc_elastic_ = number.count("all_tc_elastic") ? std::llround(get("all_tc_elastic")) : 0;
+  // Absent from checkpoints written before md.elastic_speed existed.
+  speed_elastic_ = number.count("speed_elastic") ? std::llround(get("speed_elastic")) : 0;
+  all_speed_elastic_ =
+      number.count("all_speed_elastic") ? std::llround(get("all_speed_elastic")) : 0;
   runs_ = int(std::lround(get("runs")));
   all_events_ = std::llround(get("all_events"));
   all_collisions_ = std::llround(get("all_collisions"));
@@ -503,18 +517,26 @@ EngineDetails EventDrivenEngine::details() const {
       {"events_per_second", double(all_events_) / std::max(c.wall_seconds, 1e-12)},
       {"crossings", all_crossings_},
       {"collapse_rule.rule",
-       std::string("restitution 1 - (1 - r)(u/u0)^(3/4) below impact speed u0 (Bizon et al., "
-                   "PRL 80, 57 (1998))") +
-           (options_.contact_duration > 0.0
-                ? "; elastic within t_c of either disk's previous impact (TC model, Luding & "
-                  "McNamara, Granular Matter 1, 113 (1998))"
-                : "")},
-      {"collapse_rule.collapse_speed", options_.collapse_speed},
+       std::string(options_.collapse.elastic_speed > 0.0
+                       ? "elastic below impact speed delta (Ben-Naim, Chen, Doolen & Redner, PRL "
+                         "83, 4069 (1999)); "
+                       : "") +
+           "restitution 1 - (1 - r)(u/u0)^(3/4) below impact speed u0 (Bizon et al., PRL 80, 57 "
+           "(1998))" +
+           (options_.collapse.contact_duration > 0.0
+                ? std::string("; elastic within t_c of either disk's previous impact (TC "
+                              "model, Luding & McNamara, Granular Matter 1, 113 (1998))") +
+                      (options_.collapse.contact_speed > 0.0 ? " if slower than u_c" : "")
+                : std::string())},
+      {"collapse_rule.collapse_speed", options_.collapse.collapse_speed},
       {"collapse_rule.collisions_changed", all_changed_},
       {"collapse_rule.fraction_changed",
        all_collisions_ > 0 ? double(all_changed_) / double(all_collisions_) : 0.0},
-      {"collapse_rule.contact_duration", options_.contact_duration},
+      {"collapse_rule.contact_duration", options_.collapse.contact_duration},
+      {"collapse_rule.contact_speed", options_.collapse.contact_speed},
       {"collapse_rule.collisions_made_elastic", all_tc_elastic_},
+      {"collapse_rule.elastic_speed", options_.collapse.elastic_speed},
+      {"collapse_rule.collisions_below_elastic_speed", all_speed_elastic_},
       {"max_collision_rate", options_.max_collision_rate},
       {"cells.columns", static_cast<long long>(cells_->columns())},
       {"cells.rows", static_cast<long long>(cells_->rows())}};

@@ -14,6 +14,7 @@
 
 #include "md_bridge/collision_virial.hpp"
 #include "md_bridge/event_calendar.hpp"
+#include "md_bridge/hard_disk_collision.hpp"
 #include "md_bridge/particle_engine.hpp"
 #include "md_bridge/periodic_cells.hpp"
 
@@ -25,9 +26,10 @@ struct EventDrivenOptions {
   double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
   double box_width = 0.0;
   long long particles = 0;
-  double collapse_speed = 0.0;      // md.collapse_speed: u0 of impact_restitution
+  // md.collapse_speed (u0 of impact_restitution), md.contact_duration (t_c of the TC model),
+  // md.elastic_speed (delta): the rules against inelastic collapse (hard_disk_collision.hpp).
+  CollapseRule collapse;
   double max_collision_rate = 0.0;  // md.max_collision_rate: per particle per unit MD time
-  double contact_duration = 0.0;    // md.contact_duration: t_c of the TC model (0: off)
   int virial_bins = 1;              // md.bins: the collision virial per bin along x
   MPI_Comm comm = MPI_COMM_WORLD;
 };
@@ -48,6 +50,7 @@ class EventDrivenEngine final : public ParticleEngine {
   // Throws std::invalid_argument (naming the md.* key or the box) for settings it cannot run.
   explicit EventDrivenEngine(EventDrivenOptions options);
   // From the registry: the scene and the keys md.collapse_speed, md.contact_duration,
+  // md.elastic_speed,
   // md.max_collision_rate, md.bins.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
 
@@ -90,6 +93,7 @@ class EventDrivenEngine final : public ParticleEngine {
   long long collisions() const { return collisions_; }  // of this run
   long long collisions_changed() const { return changed_; }
   long long collisions_made_elastic() const { return tc_elastic_; }  // by the TC rule
+  long long collisions_below_elastic_speed() const { return speed_elastic_; }
   // Current time and the disks' positions and velocities (xyz triplets) at it.
   double time() const { return t_; }
   // The smallest centre distance of any two disks now (sigma = 1 means touching).
@@ -149,12 +153,13 @@ class EventDrivenEngine final : public ParticleEngine {
   std::vector<double> x_, v_, mass_;  // the disks at t_ (xyz), for the run loop
   double t_ = 0.0;
   // This run.
-  long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0, tc_elastic_ = 0;
+  long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0, tc_elastic_ = 0,
+            speed_elastic_ = 0;
   long long ordered_at_ = 0;  // events_ when the disks were last put in cell order
   // Over every run.
   int runs_ = 0;
   long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0,
-            all_tc_elastic_ = 0;
+            all_tc_elastic_ = 0, all_speed_elastic_ = 0;
   double approach_sum_ = 0.0, recoil_sum_ = 0.0;  // of the normal speeds, for r measured
   // The interval being accumulated and the last one finished.
   std::vector<double> virial_sum_;  // sum of sigma J per bin

@@ -33,6 +33,34 @@ inline double contact_time(double dx, double dy, double dvx, double dvy, double 
 // u0 = 0 switches it off.
 double impact_restitution(double restitution, double approach_speed, double collapse_speed);
 
+// The rules against inelastic collapse together (docs/physics.md §10), applied in this order:
+// - elastic_speed (delta): an impact slower than delta is elastic (Ben-Naim, Chen, Doolen &
+//   Redner, Phys. Rev. Lett. 83, 4069 (1999)). A packing under load whose impacts are all slower
+//   than delta stops losing energy, so its collision rate stays finite (the Bizon rule alone
+//   lets it cool to rest in finite time); 0 = off.
+// - contact_duration (t_c): an impact within t_c of either disk's previous one is elastic (TC
+//   model, Luding & McNamara, Granular Matter 1, 113 (1998)); 0 = off. With contact_speed
+//   (u_c) > 0 only impacts slower than u_c: a fast impact is a binary collision of the gas,
+//   whatever the interval, while a packing's disks collide slowly and often (the rule then
+//   holds a loaded packing's collision rate near 1/t_c without touching the gas).
+// - collapse_speed (u0): impact_restitution above.
+struct CollapseRule {
+  double collapse_speed = 0.0;
+  double contact_duration = 0.0;
+  double elastic_speed = 0.0;
+  double contact_speed = 0.0;
+};
+// Which rule set the restitution of an impact (kNone: the scene's r, or the Bizon rule).
+enum class ElasticBy { kNone, kSpeed, kContactDuration };
+struct ImpactRestitution {
+  double r;
+  ElasticBy elastic_by;
+};
+// The restitution of an impact at normal approach speed u, `since` after the later of the two
+// disks' previous impacts.
+ImpactRestitution collision_restitution(double restitution, double approach_speed, double since,
+                                        const CollapseRule& rule);
+
 // Two equal-mass disks at contact with normal (nx, ny) (unit, from the second to the first) and
 // relative normal velocity u_n = (v1 - v2) . n < 0 (approaching): the normal impulse per unit
 // mass that each receives, J = (1 + r) |u_n| / 2 (first: +J n, second: -J n).

@@ -310,6 +310,21 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
   const auto subset = run_cli(smaller);
   ASSERT_EQ(subset.exit_code, 0) << subset.output;
   EXPECT_EQ(read_json(dir / "atlas.json")["runs_made"], 0);
+  // Collapse-rule activity as a failure mode: with the Bizon rule up to impact speed 1 (about
+  // the thermal speed) a quarter of the impacts are changed, above a limit of 5 %; the hard
+  // disks then fail as collapse_rule_active and the reference falls to LAMMPS.
+  const auto ruled =
+      run_cli(args + " --set md.collapse_speed=1 --set atlas.collapse_rule_limit=0.05");
+  ASSERT_EQ(ruled.exit_code, 0) << ruled.output;
+  const json b = read_json(dir / "atlas.json");
+  int active = 0;
+  for (const auto& run : b["runs"]) {
+    if (run["model"] != "particles/event_driven") continue;
+    EXPECT_EQ(run["status"], "collapse_rule_active") << run.dump();
+    active += run["status"] == "collapse_rule_active";
+  }
+  EXPECT_EQ(active, 3);
+  EXPECT_EQ(b["reference"]["setting"]["model"], "particles/lammps");
 }
 
 TEST(AtlasCli, BadInputIsOneLineAndExitTwo) {

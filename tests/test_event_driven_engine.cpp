@@ -35,7 +35,7 @@ EventDrivenOptions options_for(const ParticleScene& scene) {
   o.box_length = scene.box_length;
   o.box_width = scene.box_width;
   o.particles = scene.particles;
-  o.collapse_speed =
+  o.collapse.collapse_speed =
       0.01;  // the case schema's defaults of md.collapse_speed, md.max_collision_rate
   o.max_collision_rate = 1000.0;
   o.virial_bins = 10;
@@ -63,13 +63,35 @@ TEST(HardDiskCollision, RestitutionRisesToOneBelowTheCollapseSpeed) {
   EXPECT_EQ(impact_restitution(0.9, 1e-6, 0.0), 0.9);  // rule off
 }
 
+// The three rules in their order: below delta elastic whatever t_c says; within t_c elastic;
+// else the Bizon restitution (exactly impact_restitution).
+TEST(HardDiskCollision, CollapseRulesApplyInOrder) {
+  const CollapseRule rule{0.01, 0.1, 1e-3};
+  const auto below = collision_restitution(0.9, 0.5e-3, 0.05, rule);
+  EXPECT_EQ(below.r, 1.0);
+  EXPECT_EQ(below.elastic_by, ElasticBy::kSpeed);
+  const auto within = collision_restitution(0.9, 0.5, 0.05, rule);
+  EXPECT_EQ(within.r, 1.0);
+  EXPECT_EQ(within.elastic_by, ElasticBy::kContactDuration);
+  const auto bizon = collision_restitution(0.9, 0.005, 1.0, rule);
+  EXPECT_EQ(bizon.r, impact_restitution(0.9, 0.005, 0.01));
+  EXPECT_EQ(bizon.elastic_by, ElasticBy::kNone);
+  // At delta itself the impact is no longer elastic; with every rule off r is the scene's.
+  EXPECT_LT(collision_restitution(0.9, 1e-3, 1.0, rule).r, 1.0);
+  EXPECT_EQ(collision_restitution(0.9, 1e-9, 0.0, CollapseRule{}).r, 0.9);
+  // With u_c the TC rule spares the fast impacts of the gas.
+  const CollapseRule slow_only{0.01, 0.1, 0.0, 0.05};
+  EXPECT_EQ(collision_restitution(0.9, 0.5, 0.05, slow_only).r, 0.9);
+  EXPECT_EQ(collision_restitution(0.9, 0.04, 0.05, slow_only).elastic_by,
+            ElasticBy::kContactDuration);
+}
+
 TEST(EventDrivenEngine, HeadOnCollisionHasTheRestitutionAndTheRegistryMakesIt) {
   ParticleEngineSetup setup;
   setup.scene = scene_from_particles(400, 0.05, 50.0, 0.8);
-  setup.settings = {{"md.collapse_speed", 0.01},
-                    {"md.contact_duration", 0.0},
-                    {"md.max_collision_rate", 1000},
-                    {"md.bins", 4}};
+  setup.settings = {{"md.collapse_speed", 0.01},     {"md.contact_duration", 0.0},
+                    {"md.elastic_speed", 0.0},       {"md.contact_speed", 0.0},
+                    {"md.max_collision_rate", 1000}, {"md.bins", 4}};
   const auto engine = make_particle_engine("event_driven", setup);
   EXPECT_EQ(engine->name(), "event_driven");
   const CollisionRuleCheck check = engine->check_collision_rule();
@@ -327,7 +349,7 @@ TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt)
   MpiEnvironment::ensure();
   const ParticleScene scene = scene_from_particles(1000, 0.4, 20.0, 0.3);
   EventDrivenOptions off = options_for(scene);
-  off.collapse_speed = 0.0;
+  off.collapse.collapse_speed = 0.0;
   off.max_collision_rate = 200.0;
   EventDrivenEngine collapsing(off);
   collapsing.set_up(sample_particles(scene, hydro::uniform_fields(), 2));
@@ -345,16 +367,23 @@ TEST(EventDrivenEngine, EventRateRunawayStopsTheRunAndTheCollapseRulePreventsIt)
     return engine;
   };
   EventDrivenOptions on = off;
-  on.collapse_speed = 0.01;
+  on.collapse.collapse_speed = 0.01;
   EXPECT_GT(run_through(on)->collisions_changed(), 0);
   // The TC rule alone (Luding & McNamara 1998; t_c = 0.1, about 0.4 of the Enskog mean free
   // time at T0 and phi = 0.4) also runs it through: impacts within t_c of a disk's previous one
   // are elastic, and only those are changed.
   EventDrivenOptions tc = off;
-  tc.contact_duration = 0.1;
+  tc.collapse.contact_duration = 0.1;
   const auto timed = run_through(tc);
   EXPECT_GT(timed->collisions_made_elastic(), 0);
   EXPECT_EQ(timed->collisions_made_elastic(), timed->collisions_changed());
+  // The speed threshold alone (Ben-Naim et al. 1999; delta = 0.01 of the thermal speed at T0)
+  // runs it through too, and changes only the impacts below delta.
+  EventDrivenOptions slow = off;
+  slow.collapse.elastic_speed = 0.01;
+  const auto thresholded = run_through(slow);
+  EXPECT_GT(thresholded->collisions_below_elastic_speed(), 0);
+  EXPECT_EQ(thresholded->collisions_below_elastic_speed(), thresholded->collisions_changed());
 }
 
 TEST(EventDrivenCli, MdHaffRunsWithTheEventDrivenEngine) {

@@ -38,7 +38,7 @@ md::EventDrivenOptions event_driven_options(const md::ParticleScene& scene, int 
   o.box_length = scene.box_length;
   o.box_width = scene.box_width;
   o.particles = scene.particles;
-  o.collapse_speed = 0.01;
+  o.collapse.collapse_speed = 0.01;
   o.max_collision_rate = 1000.0;
   o.virial_bins = bins;
   o.comm = MPI_COMM_SELF;
