@@ -219,6 +219,12 @@ LocalParticles LammpsEngine::local_particles() {
   return {n > 0 ? lmp_->x()[0] : nullptr, n > 0 ? lmp_->v()[0] : nullptr, lmp_->rmass(), n};
 }
 
+std::vector<long long> LammpsEngine::local_ids() {
+  const int n = lmp_->nlocal();
+  const LammpsTag* tag = lmp_->id();
+  return std::vector<long long>(tag, tag + n);
+}
+
 LocalVirial LammpsEngine::local_virial() {
   LocalVirial w;
   if (!lmp_ || !virial_tallied_) return w;

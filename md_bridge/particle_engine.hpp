@@ -128,10 +128,13 @@ class ParticleEngine {
 
   // This rank's particles, for the coarse-grainer.
   virtual LocalParticles local_particles() = 0;
+  // The IDs (1 .. N) of local_particles(), in its order: where each goes in a particle frame.
+  virtual std::vector<long long> local_ids() = 0;
   // This rank's contact virial, per particle of local_particles() (collective: an engine may
   // need its ranks to exchange contributions of ghost particles).
   virtual LocalVirial local_virial() { return {}; }
-  // All particles, for a particle frame (collective).
+  // All particles on every rank (collective; particle frames use local_ids and
+  // particle_blocks.hpp instead, which gather nothing).
   virtual ParticleFrame gather_frame() = 0;
   // Engine-specific numbers of the current state, taken at every time-series sample.
   virtual EngineValues series_values() const { return {}; }
