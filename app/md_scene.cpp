@@ -280,7 +280,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   auto save = [&](int member, MemberCheckpoint c) {
     c.particle_part_wall_seconds = wall_before + since(start);
     try {
-      save_member_checkpoint(checkpointing->out_dir, member, c);
+      save_member_checkpoint(checkpointing->out_dir, member, c, engine.comm());
       ++out.checkpoints_written;
     } catch (const std::exception& e) {
       if (checkpointing->warn) checkpointing->warn(e.what());

@@ -310,7 +310,7 @@ int run_command(const RunOptions& options) {
                        "); run without --resume to start anew";
     } else {
       try {
-        resume_from = load_member_checkpoints(dir, md_scene->ensemble);
+        resume_from = load_member_checkpoints(dir, md_scene->ensemble, ranks.rank, ranks.size);
       } catch (const std::exception& e) {
         resume_problem = std::string("cannot resume: ") + e.what() + "; remove " +
                          checkpoint_folder(dir).string() + " to start anew";

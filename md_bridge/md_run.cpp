@@ -169,7 +169,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     state.so_far = result;
     state.so_far.status = "running";
     state.so_far.wall_seconds = wall();
-    if (rank == 0) checkpoints.save(state);
+    checkpoints.save(state);  // every rank: each may hold its own block of the particles
   };
 
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step

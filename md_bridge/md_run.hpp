@@ -87,7 +87,8 @@ struct MdRunState {
 };
 
 // Checkpoints of a run (docs/outputs.md, "Checkpoints and resume"). After every sample rank 0
-// asks due(); if it says yes, every rank saves the state and rank 0 hands it to save().
+// asks due(); if it says yes, every rank saves the state and hands it to save() (collective:
+// under MPI each rank's state may hold only its block of the particles, EngineState).
 struct MdCheckpoints {
   std::function<bool()> due;
   std::function<void(const MdRunState&)> save;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "md_bridge/particle_engine.hpp"
+#include "md_bridge/particle_sampler.hpp"
 
 namespace granvv::md {
 
@@ -30,5 +31,11 @@ int id_block_owner(long long row, long long n, int ranks);
 // every rank if some rank's block did not receive each of its IDs exactly once.
 ParticleFrame block_frame(const LocalParticles& local, const std::vector<long long>& ids,
                           long long n, MPI_Comm comm);
+
+// Particles held by ID block, each sent to every rank whose subdomain [lo_x, hi_x) x [lo_y, hi_y)
+// (every rank's own lo, hi), grown by `margin` on each side, holds it (collective): what a rank
+// needs to create the particles of its subdomain (LAMMPS keeps those inside it, and only those).
+ParticleSample to_subdomains(const ParticleSample& mine, const double lo[2], const double hi[2],
+                             double margin, MPI_Comm comm);
 
 }  // namespace granvv::md

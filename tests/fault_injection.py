@@ -355,7 +355,8 @@ class Mpi(FolderState):
 
     def test_a_particle_run_stopped_under_mpirun_resumes_its_block_files(self):
         # Two ranks write their ID blocks of the H5MD frames to particles_mK.rank000k.h5, joined
-        # by particles_mK.h5 (docs/outputs.md); a resume continues each rank's own file.
+        # by particles_mK.h5, and of their checkpoints to member_m.stepS.rankk.h5
+        # (docs/outputs.md); a resume continues each rank's own files.
         mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
         d = self.tmp / "stopped"
         p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE + ["--out", str(d)],
@@ -364,6 +365,24 @@ class Mpi(FolderState):
         p.terminate()  # mpirun passes SIGTERM on; under several ranks it ends them
         p.communicate(timeout=TIMEOUT)
         self.assertFalse((d / "summary.json").exists())
+        # The checkpoint holds each rank's block of the particles in a file of its own, not all
+        # of them in member_1.h5 (app/md_checkpoint.hpp).
+        c = d / ".granvv-checkpoint"
+        with h5py.File(c / "member_1.h5", "r") as f:
+            self.assertEqual(f["engine"].attrs["particle_blocks"], 2)
+            self.assertEqual(f["engine/x"].shape, (0,))
+            step = int(f.attrs["steps"])
+        for k in (0, 1):
+            with h5py.File(c / f"member_1.step{step}.rank{k}.h5", "r") as f:
+                self.assertEqual(f["x"].shape, (3 * 200,))
+                self.assertEqual(f.attrs["first_row"], 200 * k)
+        self.assertEqual(len(list(c.glob("member_1.step*.rank*.h5"))), 2)  # earlier ones removed
+        # One rank cannot continue a state saved in two blocks, and says how to.
+        r = subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("mpirun -np 2", r.stderr)
         r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
                            capture_output=True, text=True, timeout=TIMEOUT)
         self.assertEqual(r.returncode, 0, r.stderr)

@@ -15,6 +15,7 @@
 
 #include "md_bridge/lammps_engine.hpp"
 #include "md_bridge/md_run.hpp"
+#include "md_bridge/particle_blocks.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::md {
@@ -112,6 +113,15 @@ TEST(MdRun, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne) {
   const MdRunResult uninterrupted = run_md(spec, whole, nullptr, checkpoints);
   ASSERT_TRUE(saved);
   ASSERT_GT(whole.stiffness_changes(), 0);
+  // Under mpirun -np P (tests/CMakeLists.txt runs this test on 2 ranks too) each rank saved
+  // only its block of IDs, and the restore below sends them to their subdomains.
+  int ranks = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  EXPECT_EQ(saved->engine.particle_blocks, ranks);
+  EXPECT_EQ(saved->engine.first_row, id_block(spec.scene.particles, ranks, rank).first);
+  EXPECT_EQ(saved->engine.particles.x.size(),
+            3 * std::size_t(id_block(spec.scene.particles, ranks, rank).count));
 
   LammpsEngine fresh(options);
   MdCheckpoints resume;
