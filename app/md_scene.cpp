@@ -81,7 +81,7 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   e.unit = work.unit;
   e.rate = work.rate;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
-                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n : 0.0);
+                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n * share : 0.0);
   e.machine_bytes = machine_memory_bytes();
   const std::vector<std::string> size_keys = {"md.particles", "physics.K", "md.box_width",
                                               "md.area_fraction"};

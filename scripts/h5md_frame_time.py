@@ -10,6 +10,7 @@ JSON line per binary and rank count. Usage: scripts/h5md_frame_time.py build/gra
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -18,7 +19,7 @@ WORK = "/tmp/h5md_frame_time"
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np"]
 N = 200000
 FRAMES = 21
-REPEATS = 3
+REPEATS = 5
 
 
 def wall(binary, ranks, frames, out):
@@ -29,6 +30,7 @@ def wall(binary, ranks, frames, out):
                                                            "--quiet", "--no-report", "--out", out]
     for s in sets:
         cmd += ["--set", s]
+    shutil.rmtree(out, ignore_errors=True)
     subprocess.run(cmd, check=True)
     return json.load(open(os.path.join(out, "summary.json")))["md"]["wall_seconds"]
 
