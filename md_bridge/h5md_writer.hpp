@@ -23,11 +23,11 @@
 //        \-- time: float64[frames]                exist (possibly with 0 frames); any other
 //        \-- value: float64[frames]               name is created on its first append.
 //
-// Every time-dependent dataset is chunked and extendible along its first (frame) axis; strings
-// are fixed-length, null-terminated ASCII, as H5MD requires. Units are those of the MD run
-// (sigma = m = T0 = 1, docs/physics.md §4); step is the engine's step count and time the
-// physical time. Steps must increase strictly and times must not decrease within each element (H5MD
-// requires monotonic step/time so that readers may bisect them).
+// Every time-dependent dataset is chunked (a joined file's values: virtual, below) and extendible
+// along its first (frame) axis; strings are fixed-length, null-terminated ASCII, as H5MD requires.
+// Units are those of the MD run (sigma = m = T0 = 1, docs/physics.md §4); step is the engine's step
+// count and time the physical time. Steps must increase strictly and times must not decrease within
+// each element (H5MD requires monotonic step/time so that readers may bisect them).
 //
 // Positions are written modulo the box into [-Lx/2, Lx/2) x [-Ly/2, Ly/2), the box of
 // md_run (LAMMPS: `region box block -Lx/2 Lx/2 -Ly/2 Ly/2`); no image element is written.
@@ -47,8 +47,10 @@
 // mapping every block file's rows into rows [first, first + count) of the whole, along an
 // unlimited frame axis; its step, time and observables are its own. A reader opens the joined
 // file alone (the block files are found beside it, by their file names) and sees one
-// [frames][N][2] dataset; a block file missing reads as NaN. The joined file keeps superblock
-// version 2 (HDF5 1.8 lower bound, the virtual layout needs the 1.10 upper bound).
+// [frames][N][2] dataset; a block file missing reads as NaN. Its value datasets are as long as
+// the longest block file, so that after a kill they may show a frame more than step and time,
+// which count the frames every block file finished. The joined file keeps superblock version 2
+// (HDF5 1.8 lower bound; the virtual layout needs the 1.10 upper bound).
 // Needs HDF5 >= 1.10.7 (H5Pset_file_locking).
 //
 // Errors (bad arguments, HDF5 failures) throw std::invalid_argument or std::runtime_error,

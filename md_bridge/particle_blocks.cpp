@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -69,29 +68,31 @@ void pack(double* p, long long id, const double* x, const double* v, std::size_t
   p[4] = v[3 * i + 1];
 }
 
-// The particles each go to the ranks `destinations(i)` lists (collective).
+// The particles each go to the ranks `destinations(i, list)` appends to list (collective),
+// packed in one buffer by destination: counted first, then filled.
+template <class Destinations>
 std::vector<double> send_to(std::size_t count, const long long* ids, const double* x,
-                            const double* v, int ranks,
-                            const std::function<void(std::size_t, std::vector<int>&)>& destinations,
+                            const double* v, int ranks, const Destinations& destinations,
                             MPI_Comm comm) {
-  std::vector<std::vector<double>> to(static_cast<std::size_t>(ranks));
-  std::vector<int> where;
+  std::vector<int> values(static_cast<std::size_t>(ranks), 0), where;
+  long long total = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    where.clear();
+    destinations(i, where);
+    for (const int k : where) values[std::size_t(k)] += kPacked;
+    total += kPacked * (long long)where.size();
+  }
+  checked_count(total, "one rank's particles");
+  std::vector<int> fill(static_cast<std::size_t>(ranks), 0);
+  for (std::size_t k = 1; k < fill.size(); ++k) fill[k] = fill[k - 1] + values[k - 1];
+  std::vector<double> send(static_cast<std::size_t>(total));
   for (std::size_t i = 0; i < count; ++i) {
     where.clear();
     destinations(i, where);
     for (const int k : where) {
-      auto& list = to[std::size_t(k)];
-      list.resize(list.size() + kPacked);
-      pack(&list[list.size() - kPacked], ids[i], x, v, i);
+      pack(&send[std::size_t(fill[std::size_t(k)])], ids[i], x, v, i);
+      fill[std::size_t(k)] += kPacked;
     }
-  }
-  std::vector<int> values(static_cast<std::size_t>(ranks));
-  std::vector<double> send;
-  for (int k = 0; k < ranks; ++k) {
-    values[std::size_t(k)] =
-        checked_count((long long)to[std::size_t(k)].size(), "one rank's particles");
-    send.insert(send.end(), to[std::size_t(k)].begin(), to[std::size_t(k)].end());
-    to[std::size_t(k)] = {};
   }
   return exchange(send, values, comm);
 }
@@ -109,39 +110,49 @@ ParticleFrame block_frame(const LocalParticles& local, const std::vector<long lo
                            std::to_string(count) + " local particles");
   // The largest block is the same on every rank, so all refuse it together.
   checked_count(kPacked * (n / ranks + 1), "one rank's block");
-  bool ids_valid = true;
-  const std::vector<double> receive = send_to(
-      count, ids.data(), local.x, local.v, ranks,
-      [&](std::size_t i, std::vector<int>& to) {
-        const long long row = ids[i] - 1;
-        if (row < 0 || row >= n) {
-          ids_valid = false;
-          return;
-        }
-        to.push_back(id_block_owner(row, n, ranks));
-      },
-      comm);
-
   const IdBlock block = id_block(n, ranks, rank);
   ParticleFrame frame;
   frame.x.assign(std::size_t(3 * block.count), 0.0);
   frame.v.assign(std::size_t(3 * block.count), 0.0);
   std::vector<char> seen(std::size_t(block.count), 0);
-  const long long received = (long long)receive.size();
-  bool complete = ids_valid && received == kPacked * block.count;
-  for (long long j = 0; complete && j < received; j += kPacked) {
-    const double* p = &receive[std::size_t(j)];
-    const long long row = std::llround(p[0]) - 1 - block.first;
-    if (row < 0 || row >= block.count || seen[std::size_t(row)]) {
-      complete = false;
-      break;
-    }
+  long long placed = 0;
+  bool complete = true;
+  // Particle `id` into its row of this rank's block; false if it has no row or had one already.
+  auto place = [&](long long id, double x, double y, double vx, double vy) {
+    const long long row = id - 1 - block.first;
+    if (row < 0 || row >= block.count || seen[std::size_t(row)]) return false;
     seen[std::size_t(row)] = 1;
-    frame.x[std::size_t(3 * row)] = p[1];
-    frame.x[std::size_t(3 * row + 1)] = p[2];
-    frame.v[std::size_t(3 * row)] = p[3];
-    frame.v[std::size_t(3 * row + 1)] = p[4];
+    frame.x[std::size_t(3 * row)] = x;
+    frame.x[std::size_t(3 * row + 1)] = y;
+    frame.v[std::size_t(3 * row)] = vx;
+    frame.v[std::size_t(3 * row + 1)] = vy;
+    ++placed;
+    return true;
+  };
+  if (ranks == 1) {  // every particle is this rank's: placed directly
+    for (std::size_t i = 0; complete && i < count; ++i)
+      complete =
+          place(ids[i], local.x[3 * i], local.x[3 * i + 1], local.v[3 * i], local.v[3 * i + 1]);
+  } else {
+    bool ids_valid = true;
+    const std::vector<double> receive = send_to(
+        count, ids.data(), local.x, local.v, ranks,
+        [&](std::size_t i, std::vector<int>& to) {
+          const long long row = ids[i] - 1;
+          if (row < 0 || row >= n) {
+            ids_valid = false;
+            return;
+          }
+          to.push_back(id_block_owner(row, n, ranks));
+        },
+        comm);
+    complete = ids_valid;
+    for (std::size_t j = 0; complete && j < receive.size(); j += kPacked) {
+      const double* p = &receive[j];
+      complete = place(static_cast<long long>(p[0]), p[1], p[2], p[3], p[4]);
+    }
   }
+  complete = complete && placed == block.count;
   int all_complete = complete ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &all_complete, 1, MPI_INT, MPI_MIN, comm);
   if (!all_complete)
@@ -175,7 +186,7 @@ ParticleSample to_subdomains(const ParticleSample& mine, const double lo[2], con
   sample.id.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
     const double* p = &receive[kPacked * j];
-    sample.id[j] = std::llround(p[0]);
+    sample.id[j] = static_cast<long long>(p[0]);
     sample.x[3 * j] = p[1];
     sample.x[3 * j + 1] = p[2];
     sample.v[3 * j] = p[3];
