@@ -2,6 +2,7 @@
 
 #include <H5Cpp.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -20,6 +21,55 @@ namespace {
 
 fs::path member_file(const fs::path& out_dir, int member) {
   return checkpoint_folder(out_dir) / ("member_" + std::to_string(member) + ".h5");
+}
+
+// Rank k's block of member m's particles at step S: member_<m>.step<S>.rank<k>.h5.
+std::string block_prefix(int member) {
+  return "member_" + std::to_string(member) + ".step";
+}
+fs::path block_file(const fs::path& out_dir, int member, long long step, int rank) {
+  return checkpoint_folder(out_dir) /
+         (block_prefix(member) + std::to_string(step) + ".rank" + std::to_string(rank) + ".h5");
+}
+
+// Writes `write(file)` to file.partial, puts it on the disk and renames it to file; throws
+// std::runtime_error naming file (the partial file removed).
+template <class Write>
+void write_replacing(const fs::path& file, const Write& write) {
+  const fs::path partial = file.string() + ".partial";
+  try {
+    write(partial);
+    sync_to_disk(partial);
+    std::error_code error;
+    fs::rename(partial, file, error);
+    if (error) throw std::runtime_error(error.message());
+    sync_to_disk(file.parent_path());
+  } catch (const H5::Exception& e) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " +
+                             e.getDetailMsg());
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
+  }
+}
+
+void write_particles(const fs::path& file, const md::EngineState& e) {
+  H5::H5File h5(file.string(), H5F_ACC_TRUNC);
+  H5::Group root = h5.openGroup("/");
+  h5::write_attribute(root, "first_row", double(e.first_row));
+  h5::write_vector(root, "x", e.particles.x);
+  h5::write_vector(root, "v", e.particles.v);
+  h5.close();
+}
+
+// True on every rank of comm if ok on every one (collective).
+bool everywhere(bool ok, MPI_Comm comm) {
+  int all = ok ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm);
+  return all == 1;
 }
 
 void write_state(const fs::path& file, const MemberCheckpoint& c) {
@@ -61,12 +111,19 @@ void write_state(const fs::path& file, const MemberCheckpoint& c) {
   }
   h5::write_strings(engine, "names", names);
   h5::write_vector(engine, "values", values);
-  h5::write_vector(engine, "x", s.engine.particles.x);
-  h5::write_vector(engine, "v", s.engine.particles.v);
+  if (s.engine.particle_blocks > 1) {  // the particles are in the ranks' block files
+    h5::write_attribute(engine, "particle_blocks", double(s.engine.particle_blocks));
+    h5::write_vector(engine, "x", {});
+    h5::write_vector(engine, "v", {});
+  } else {
+    h5::write_vector(engine, "x", s.engine.particles.x);
+    h5::write_vector(engine, "v", s.engine.particles.v);
+  }
   h5.close();
 }
 
-MemberCheckpoint read_state(const fs::path& file) {
+MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int member, int rank,
+                            int ranks) {
   MemberCheckpoint c;
   md::MdRunState& s = c.state;
   md::MdRunResult& r = s.so_far;
@@ -99,6 +156,20 @@ MemberCheckpoint read_state(const fs::path& file) {
   for (std::size_t i = 0; i < names.size(); ++i) s.engine.numbers.push_back({names[i], values[i]});
   s.engine.particles.x = h5::read_doubles(engine, "x").values;
   s.engine.particles.v = h5::read_doubles(engine, "v").values;
+  if (engine.attrExists("particle_blocks")) {
+    const int blocks = int(h5::read_double_attribute(engine, "particle_blocks"));
+    if (blocks != ranks)
+      throw std::runtime_error("its particles were saved in blocks by " + std::to_string(blocks) +
+                               " MPI ranks, and this run has " + std::to_string(ranks) +
+                               ": resume it under mpirun -np " + std::to_string(blocks));
+    s.engine.particle_blocks = blocks;
+    const fs::path own = block_file(out_dir, member, r.steps, rank);
+    const H5::H5File block(own.string(), H5F_ACC_RDONLY);
+    const H5::Group block_root = block.openGroup("/");
+    s.engine.first_row = std::llround(h5::read_double_attribute(block_root, "first_row"));
+    s.engine.particles.x = h5::read_doubles(block_root, "x").values;
+    s.engine.particles.v = h5::read_doubles(block_root, "v").values;
+  }
   return c;
 }
 
@@ -151,36 +222,53 @@ void start_checkpoints(const fs::path& out_dir, const std::string& resolved_case
   write_file_atomically(folder / "case.toml", resolved_case);
 }
 
-void save_member_checkpoint(const fs::path& out_dir, int member, const MemberCheckpoint& c) {
-  const fs::path file = member_file(out_dir, member);
-  const fs::path partial = file.string() + ".partial";
-  try {
-    write_state(partial, c);
-    sync_to_disk(partial);
-    std::error_code error;
-    fs::rename(partial, file, error);
-    if (error) throw std::runtime_error(error.message());
-    sync_to_disk(file.parent_path());
-  } catch (const H5::Exception& e) {
-    std::error_code ignored;
-    fs::remove(partial, ignored);
-    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " +
-                             e.getDetailMsg());
-  } catch (const std::exception& e) {
-    std::error_code ignored;
-    fs::remove(partial, ignored);
-    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
+void save_member_checkpoint(const fs::path& out_dir, int member, const MemberCheckpoint& c,
+                            MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const md::EngineState& e = c.state.engine;
+  const long long step = c.state.so_far.steps;
+  if (e.particle_blocks > 1) {  // every rank its block first, under a name of this step
+    std::string error;
+    try {
+      write_replacing(block_file(out_dir, member, step, rank),
+                      [&](const fs::path& f) { write_particles(f, e); });
+    } catch (const std::exception& x) {
+      error = x.what();
+    }
+    if (!everywhere(error.empty(), comm))
+      throw std::runtime_error(error.empty() ? "another rank could not write its checkpoint block"
+                                             : error);
   }
+  std::string error;
+  if (rank == 0) {
+    try {
+      write_replacing(member_file(out_dir, member), [&](const fs::path& f) { write_state(f, c); });
+      // The member file names this step's blocks now: the earlier ones go.
+      std::error_code ignored;
+      const std::string prefix = block_prefix(member), own = prefix + std::to_string(step) + ".";
+      for (const auto& entry : fs::directory_iterator(checkpoint_folder(out_dir), ignored)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) == 0 && name.rfind(own, 0) != 0) fs::remove(entry, ignored);
+      }
+    } catch (const std::exception& x) {
+      error = x.what();
+    }
+  }
+  if (e.particle_blocks > 1 && !everywhere(error.empty(), comm))
+    throw std::runtime_error(error.empty() ? "rank 0 could not write the checkpoint" : error);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
-std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, int members) {
+std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, int members,
+                                                      int rank, int ranks) {
   H5::Exception::dontPrint();
   std::vector<MemberCheckpoint> loaded;
   for (int m = 0; m < members; ++m) {
     const fs::path file = member_file(out_dir, m);
     if (!fs::exists(file)) break;
     try {
-      loaded.push_back(read_state(file));
+      loaded.push_back(read_state(file, out_dir, m, rank, ranks));
     } catch (const H5::Exception& e) {
       throw std::runtime_error("cannot read the checkpoint " + file.string() + ": " +
                                e.getDetailMsg());

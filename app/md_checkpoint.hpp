@@ -5,8 +5,12 @@
 //   case.toml          the resolved case they belong to; a resume must resolve to the same text
 //   member_<m>.h5      ensemble member m: its finished result, or the state its run last saved
 //                      (md_bridge/md_run.hpp MdRunState), each file replaced whole by a rename
+//   member_<m>.step<S>.rank<k>.h5  under MPI, rank k's block of the particles of member m's
+//                      state at step S (EngineState::particle_blocks > 1), written by rank k
 //   particles*.h5      the members' H5MD particle files while the particle part runs
-// Rank 0 alone writes and reads them; the states go to the other ranks by the engine's restore.
+// Rank 0 alone writes the member files; every rank reads them, and its own block file.
+#include <mpi.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,14 +46,19 @@ struct MemberCheckpoint {
 };
 
 // Writes member m's checkpoint, replacing the previous one only once it is complete on the disk.
-// Throws std::runtime_error (the previous checkpoint then stays).
+// Called on every rank of comm: with the particles in blocks (particle_blocks > 1) it is
+// collective, each rank writing its block file before rank 0 writes the member file that names
+// them; otherwise rank 0 alone writes. Throws std::runtime_error (on every rank that took part;
+// the previous checkpoint then stays).
 void save_member_checkpoint(const std::filesystem::path& out_dir, int member,
-                            const MemberCheckpoint& checkpoint);
+                            const MemberCheckpoint& checkpoint, MPI_Comm comm = MPI_COMM_SELF);
 
-// The members' checkpoints in order, up to the first member without one. Throws
-// std::runtime_error naming the file if one cannot be read.
+// The members' checkpoints in order, up to the first member without one, as rank `rank` of
+// `ranks` restores them (its own block of particles saved in blocks). Throws std::runtime_error
+// naming the file if one cannot be read, or if it was saved in blocks over another number of
+// ranks.
 std::vector<MemberCheckpoint> load_member_checkpoints(const std::filesystem::path& out_dir,
-                                                      int members);
+                                                      int members, int rank = 0, int ranks = 1);
 
 // Removes the checkpoint folder (after a run whose results are complete); never throws.
 void remove_checkpoints(const std::filesystem::path& out_dir);

@@ -81,7 +81,7 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   e.unit = work.unit;
   e.rate = work.rate;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
-                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n : 0.0);
+                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n * share : 0.0);
   e.machine_bytes = machine_memory_bytes();
   const std::vector<std::string> size_keys = {"md.particles", "physics.K", "md.box_width",
                                               "md.area_fraction"};
@@ -280,7 +280,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   auto save = [&](int member, MemberCheckpoint c) {
     c.particle_part_wall_seconds = wall_before + since(start);
     try {
-      save_member_checkpoint(checkpointing->out_dir, member, c);
+      save_member_checkpoint(checkpointing->out_dir, member, c, engine.comm());
       ++out.checkpoints_written;
     } catch (const std::exception& e) {
       if (checkpointing->warn) checkpointing->warn(e.what());

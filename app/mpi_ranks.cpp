@@ -35,4 +35,13 @@ bool all_ranks_ok(const Ranks& ranks, bool ok) {
   return all == 1;
 }
 
+std::string writers_value(const Ranks& ranks, std::string value) {
+  if (ranks.size == 1) return value;
+  int length = int(value.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  value.resize(std::size_t(length));
+  MPI_Bcast(value.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  return value;
+}
+
 }  // namespace granvv::app

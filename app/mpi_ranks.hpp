@@ -2,6 +2,8 @@
 // The ranks of a `granvv run` under mpirun: every rank runs the scene, rank 0 alone writes, and
 // a failure of the writer (an unusable folder, a write error) is shared so that no rank goes on
 // alone into a collective step.
+#include <string>
+
 namespace granvv::app {
 
 struct Ranks {
@@ -16,5 +18,8 @@ Ranks join_ranks(bool engine_needs_mpi);
 
 // True on every rank if ok is true on every rank (collective when size > 1).
 bool all_ranks_ok(const Ranks& ranks, bool ok);
+
+// The writer's value on every rank (collective when size > 1): a path only rank 0 knows.
+std::string writers_value(const Ranks& ranks, std::string value);
 
 }  // namespace granvv::app

@@ -310,7 +310,7 @@ int run_command(const RunOptions& options) {
                        "); run without --resume to start anew";
     } else {
       try {
-        resume_from = load_member_checkpoints(dir, md_scene->ensemble);
+        resume_from = load_member_checkpoints(dir, md_scene->ensemble, ranks.rank, ranks.size);
       } catch (const std::exception& e) {
         resume_problem = std::string("cannot resume: ") + e.what() + "; remove " +
                          checkpoint_folder(dir).string() + " to start anew";
@@ -418,8 +418,9 @@ int run_command(const RunOptions& options) {
       summary["status"] = status_so_far;
       log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
       const fs::path frames_dir = frames_in_checkpoints ? checkpoint_folder(dir) : work;
-      if (md_scene->spec.snapshot_interval > 0.0) {
-        md_scene->spec.h5md_path = (frames_dir / "particles.h5").string();
+      if (md_scene->spec.snapshot_interval > 0.0) {  // every rank writes its block there
+        md_scene->spec.h5md_path =
+            writers_value(ranks, writer ? (frames_dir / "particles.h5").string() : "");
       }
       MdOutcome particles =
           run_particles(*md_scene, *engine, scene.progress_seconds, checkpointing, *log);

@@ -38,10 +38,15 @@ void set_up_disk_gas(LammpsSession& lmp, double lx, double ly, const ParticleSam
   add_disks(lmp, sample, contact, sample.count());
 }
 
-std::pair<double, double> lammps_subdomain_x(LammpsSession& lmp) {
+std::pair<std::array<double, 2>, std::array<double, 2>> lammps_subdomain(LammpsSession& lmp) {
   const auto* lo = static_cast<const double*>(lammps_extract_global(lmp.handle(), "sublo"));
   const auto* hi = static_cast<const double*>(lammps_extract_global(lmp.handle(), "subhi"));
   if (!lo || !hi) throw std::runtime_error("LAMMPS gave no subdomain bounds (sublo, subhi)");
+  return {{lo[0], lo[1]}, {hi[0], hi[1]}};
+}
+
+std::pair<double, double> lammps_subdomain_x(LammpsSession& lmp) {
+  const auto [lo, hi] = lammps_subdomain(lmp);
   return {lo[0], hi[0]};
 }
 

@@ -3,6 +3,7 @@
 // [-Lx/2, Lx/2) x [-Ly/2, Ly/2): atom_style sphere, gran/hooke with friction off, velocity
 // Verlet for discs (fix nve/sphere disc) kept in the plane (fix enforce2d), ghost velocities
 // communicated (needed by granular pairs, docs/physics.md §10).
+#include <array>
 #include <utility>
 
 #include "md_bridge/contact_model.hpp"
@@ -23,5 +24,7 @@ void add_disks(LammpsSession& lmp, const ParticleSample& sample, const ContactMo
                long long total);
 // The x-range [lo, hi) of this rank's LAMMPS subdomain.
 std::pair<double, double> lammps_subdomain_x(LammpsSession& lmp);
+// Its lower and upper corners {x, y}.
+std::pair<std::array<double, 2>, std::array<double, 2>> lammps_subdomain(LammpsSession& lmp);
 
 }  // namespace granvv::md

@@ -409,6 +409,12 @@ LocalParticles EventDrivenEngine::local_particles() {
   return {x_.data(), v_.data(), mass_.data(), int(disks_.size())};
 }
 
+std::vector<long long> EventDrivenEngine::local_ids() {
+  std::vector<long long> ids(std::size_t(local_particles().count));
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (long long)i + 1;  // x_ is in ID order
+  return ids;
+}
+
 LocalVirial EventDrivenEngine::local_virial() {
   return rank_ == 0 ? tally_.last() : LocalVirial{};
 }

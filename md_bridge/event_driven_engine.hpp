@@ -73,6 +73,7 @@ class EventDrivenEngine final : public ParticleEngine {
   // Every rank holds and moves all disks (the same dynamics on each); rank 0 hands them to the
   // coarse-grainer, the others none.
   LocalParticles local_particles() override;
+  std::vector<long long> local_ids() override;
   ParticleFrame gather_frame() override;
   // Each disk's share of the collision virial over the last interval of advance_to
   // (collision_virial.hpp), on rank 0; empty before the first advance of a run.

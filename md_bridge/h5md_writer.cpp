@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -74,10 +75,12 @@ H5::DataSet extendible_dataset(H5::Group& group, const std::string& name,
 
 // Creates <parent>/<name>/{step,time,value}. With `shared` given, step and time are hard links
 // to those of `shared` (H5MD: elements sampled at equal times may share them).
+// With `virtual_value` given, value is made by it (a joined file's virtual dataset).
 Series create_series(H5::Group& parent, const std::string& name,
                      const std::vector<hsize_t>& frame_shape,
                      const std::vector<hsize_t>& chunk_frame_shape, hsize_t chunk_frames,
-                     const Series* shared = nullptr) {
+                     const Series* shared = nullptr,
+                     const std::function<H5::DataSet(H5::Group&)>& virtual_value = {}) {
   Series s;
   s.frame_shape = frame_shape;
   H5::Group group = parent.createGroup(name);
@@ -93,9 +96,54 @@ Series create_series(H5::Group& parent, const std::string& name,
     s.step = extendible_dataset(group, "step", H5::PredType::STD_I64LE, {}, {}, kSeriesChunk);
     s.time = extendible_dataset(group, "time", H5::PredType::IEEE_F64LE, {}, {}, kSeriesChunk);
   }
-  s.value = extendible_dataset(group, "value", H5::PredType::IEEE_F64LE, frame_shape,
-                               chunk_frame_shape, chunk_frames);
+  s.value = virtual_value ? virtual_value(group)
+                          : extendible_dataset(group, "value", H5::PredType::IEEE_F64LE,
+                                               frame_shape, chunk_frame_shape, chunk_frames);
   return s;
+}
+
+// hsize_t arrays as the C API takes them.
+hid_t selected(hid_t space, const std::vector<hsize_t>& start, const std::vector<hsize_t>& count,
+               const std::vector<hsize_t>& block) {
+  const std::vector<hsize_t> stride(start.size(), 1);
+  if (H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), stride.data(), count.data(),
+                          block.data()) < 0)
+    throw std::runtime_error("cannot select the rows of a block");
+  return space;
+}
+
+// A virtual dataset `name` in `group` of the rows of every block: the dataset `source` of each
+// block file, of shape [rows] (framed false) or [frames][rows][2] (framed true, along an
+// unlimited frame axis), placed at rows [first, first + count) of [N] or [frames][N][2].
+H5::DataSet virtual_rows(H5::Group& group, const std::string& name, const H5::DataType& type,
+                         bool framed, hsize_t n, const std::vector<H5mdBlock>& blocks,
+                         const std::string& source) {
+  H5::DSetCreatPropList props;
+  if (framed) {
+    const double nan = std::nan("");
+    props.setFillValue(H5::PredType::NATIVE_DOUBLE, &nan);
+  }
+  const std::vector<hsize_t> dims =
+      framed ? std::vector<hsize_t>{0, n, 2} : std::vector<hsize_t>{n};
+  std::vector<hsize_t> max_dims = dims;
+  if (framed) max_dims[0] = H5S_UNLIMITED;
+  for (const auto& b : blocks) {
+    const hsize_t first = hsize_t(b.first), count = hsize_t(b.count);
+    std::vector<hsize_t> source_dims{count}, source_max{count};
+    if (framed) source_dims = {0, count, 2}, source_max = {H5S_UNLIMITED, count, 2};
+    const H5::DataSpace whole(int(dims.size()), dims.data(), max_dims.data());
+    const H5::DataSpace part(int(source_dims.size()), source_dims.data(), source_max.data());
+    const hid_t v =
+        framed ? selected(whole.getId(), {0, first, 0}, {H5S_UNLIMITED, 1, 1}, {1, count, 2})
+               : selected(whole.getId(), {first}, {1}, {count});
+    const hid_t src = framed
+                          ? selected(part.getId(), {0, 0, 0}, {H5S_UNLIMITED, 1, 1}, {1, count, 2})
+                          : selected(part.getId(), {0}, {1}, {count});
+    if (H5Pset_virtual(props.getId(), v, b.file.c_str(), source.c_str(), src) < 0)
+      throw std::runtime_error("cannot map " + b.file + " into " + name);
+  }
+  const H5::DataSpace space(int(dims.size()), dims.data(), max_dims.data());
+  return group.createDataSet(name, type, space, props);
 }
 
 // Writes one sample at row `row` of an extendible dataset, growing it to row + 1 rows.
@@ -124,8 +172,9 @@ void check_order(const Series& s, const std::string& what, long long step, doubl
 
 // Appends value (and, where the element owns them, step and time) at the next row. The value
 // goes first and step last, so that a reader never sees a step without its data.
+// Without a value (a joined file, whose values are the block files'), step and time only.
 void append(Series& s, long long step, double time, const double* value) {
-  write_row(s.value, s.frames, s.frame_shape, H5::PredType::NATIVE_DOUBLE, value);
+  if (value) write_row(s.value, s.frames, s.frame_shape, H5::PredType::NATIVE_DOUBLE, value);
   if (s.owns_step_time) {
     const std::int64_t step64 = step;
     write_row(s.time, s.frames, {}, H5::PredType::NATIVE_DOUBLE, &time);
@@ -150,9 +199,17 @@ bool valid_element_name(const std::string& name) {
 
 }  // namespace
 
+struct H5mdWriter::Layout {
+  enum class Kind { whole, block, joined } kind = Kind::whole;
+  long long n = 0;                // particles in a frame of the run
+  H5mdBlock rows;                 // the rows this file holds (whole and joined: all N)
+  std::vector<H5mdBlock> blocks;  // joined: the block files
+};
+
 struct H5mdWriter::Impl {
   std::string path;
-  long long n = 0;
+  Layout layout;
+  long long n = 0;  // rows of a frame in this file
   double lx = 0.0, ly = 0.0;
   H5::H5File file;
   H5::Group observables;
@@ -175,15 +232,63 @@ const std::vector<std::string>& H5mdWriter::standard_observables() {
   return names;
 }
 
+namespace {
+
+// The layout's problem, or "".
+std::string layout_problem(long long n, const H5mdBlock& rows, const std::vector<H5mdBlock>& blocks,
+                           bool joined) {
+  if (n < 1) return "n_particles = " + std::to_string(n) + ", must be >= 1";
+  if (rows.count < 1 || rows.first < 0 || rows.first + rows.count > n)
+    return "rows " + std::to_string(rows.first) + " + " + std::to_string(rows.count) +
+           " do not lie within the " + std::to_string(n) + " particles";
+  if (!joined) return "";
+  long long next = 0;
+  for (const auto& b : blocks) {
+    if (b.first != next || b.count < 1 || b.file.empty())
+      return "the block files do not cover the particles once, in order";
+    next += b.count;
+  }
+  return next == n ? "" : "the block files do not cover the particles once, in order";
+}
+
+}  // namespace
+
 H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double box_length,
+                       double box_width, const std::string& creator_version,
+                       const std::string& author)
+    : H5mdWriter(
+          path,
+          Layout{Layout::Kind::whole, n_particles, H5mdBlock{std::string(), 0, n_particles}, {}},
+          box_length, box_width, creator_version, author) {}
+
+H5mdWriter H5mdWriter::block_file(const std::string& path, long long n_particles,
+                                  const H5mdBlock& block, double box_length, double box_width,
+                                  const std::string& creator_version) {
+  return H5mdWriter(path, Layout{Layout::Kind::block, n_particles, block, {}}, box_length,
+                    box_width, creator_version, "");
+}
+
+H5mdWriter H5mdWriter::joined_file(const std::string& path, long long n_particles,
+                                   const std::vector<H5mdBlock>& blocks, double box_length,
+                                   double box_width, const std::string& creator_version) {
+  return H5mdWriter(
+      path,
+      Layout{Layout::Kind::joined, n_particles, H5mdBlock{std::string(), 0, n_particles}, blocks},
+      box_length, box_width, creator_version, "");
+}
+
+H5mdWriter::H5mdWriter(const std::string& path, const Layout& layout, double box_length,
                        double box_width, const std::string& creator_version,
                        const std::string& author)
     : impl_(std::make_unique<Impl>()) {
   auto& m = *impl_;
   m.path = path;
-  if (n_particles < 1)
-    throw std::invalid_argument(
-        "H5MD file " + path + ": n_particles = " + std::to_string(n_particles) + ", must be >= 1");
+  m.layout = layout;
+  using Kind = Layout::Kind;
+  const std::string problem =
+      layout_problem(layout.n, layout.rows, layout.blocks, layout.kind == Kind::joined);
+  if (!problem.empty()) throw std::invalid_argument("H5MD file " + path + ": " + problem);
+  const long long n_particles = layout.rows.count;
   if (!(std::isfinite(box_length) && box_length > 0 && std::isfinite(box_width) && box_width > 0))
     throw std::invalid_argument("H5MD file " + path + ": box " + std::to_string(box_length) +
                                 " x " + std::to_string(box_width) +
@@ -191,14 +296,16 @@ H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double bo
   m.n = n_particles;
   m.lx = box_length;
   m.ly = box_width;
-  m.buffer.resize(static_cast<size_t>(2 * n_particles));
+  if (layout.kind != Kind::joined) m.buffer.resize(static_cast<size_t>(2 * n_particles));
 
   H5::Exception::dontPrint();
   try {
     H5::FileAccPropList access;
     // HDF5 1.8 format (superblock 2), as H5MD recommends; it carries no consistency flags, so
     // a file left by a killed process opens without h5clear.
-    access.setLibverBounds(H5F_LIBVER_V18, H5F_LIBVER_V18);
+    // A joined file's virtual datasets need the 1.10 layout message; its superblock stays 2.
+    access.setLibverBounds(H5F_LIBVER_V18,
+                           layout.kind == Kind::joined ? H5F_LIBVER_V110 : H5F_LIBVER_V18);
     // No file lock, so that other processes can read the file during the run.
     if (H5Pset_file_locking(access.getId(), false, true) < 0)
       throw std::runtime_error("H5MD file " + path + ": cannot disable file locking");
@@ -227,19 +334,35 @@ H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double bo
         .write(edges, H5::PredType::NATIVE_DOUBLE);
 
     const hsize_t n = static_cast<hsize_t>(n_particles);
-    std::vector<std::int64_t> ids(n);
-    for (hsize_t i = 0; i < n; ++i) ids[i] = static_cast<std::int64_t>(i + 1);
-    const hsize_t id_dims[1] = {n};
-    all.createDataSet("id", H5::PredType::STD_I64LE, H5::DataSpace(1, id_dims))
-        .write(ids.data(), H5::PredType::NATIVE_INT64);
-
     const std::vector<hsize_t> frame{n, 2}, chunk{std::min(n, kMaxParticlesPerChunk), 2};
-    m.position = create_series(all, "position", frame, chunk, 1);
-    m.velocity = create_series(all, "velocity", frame, chunk, 1, &m.position);
+    if (layout.kind == Kind::joined) {
+      virtual_rows(all, "id", H5::PredType::STD_I64LE, false, n, layout.blocks,
+                   "/particles/all/id");
+      auto values_of = [&](const std::string& element) {
+        return [&, element](H5::Group& g) {
+          return virtual_rows(g, "value", H5::PredType::IEEE_F64LE, true, n, layout.blocks,
+                              "/particles/all/" + element + "/value");
+        };
+      };
+      m.position = create_series(all, "position", frame, chunk, 1, nullptr, values_of("position"));
+      m.velocity =
+          create_series(all, "velocity", frame, chunk, 1, &m.position, values_of("velocity"));
+    } else {
+      std::vector<std::int64_t> ids(n);
+      for (hsize_t i = 0; i < n; ++i)
+        ids[i] = static_cast<std::int64_t>(hsize_t(layout.rows.first) + i + 1);
+      const hsize_t id_dims[1] = {n};
+      all.createDataSet("id", H5::PredType::STD_I64LE, H5::DataSpace(1, id_dims))
+          .write(ids.data(), H5::PredType::NATIVE_INT64);
+      m.position = create_series(all, "position", frame, chunk, 1);
+      m.velocity = create_series(all, "velocity", frame, chunk, 1, &m.position);
+    }
 
-    m.observables = m.file.createGroup("observables");
-    for (const auto& name : standard_observables())
-      m.observable.emplace(name, create_series(m.observables, name, {}, {}, kSeriesChunk));
+    if (layout.kind != Kind::block) {
+      m.observables = m.file.createGroup("observables");
+      for (const auto& name : standard_observables())
+        m.observable.emplace(name, create_series(m.observables, name, {}, {}, kSeriesChunk));
+    }
     m.file.flush(H5F_SCOPE_LOCAL);
   } catch (const H5::Exception& e) {
     m.fail("cannot create", e);
@@ -275,34 +398,77 @@ std::vector<double> read_frame(const H5::DataSet& value, hsize_t row, hsize_t n)
 H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_step,
                                      long long n_particles, double box_length, double box_width,
                                      const std::string& creator_version) {
+  return continue_layout(
+      path, last_step,
+      Layout{Layout::Kind::whole, n_particles, H5mdBlock{std::string(), 0, n_particles}, {}},
+      box_length, box_width, creator_version);
+}
+
+H5mdWriter H5mdWriter::continue_block_file(const std::string& path, long long last_step,
+                                           long long n_particles, const H5mdBlock& block,
+                                           double box_length, double box_width,
+                                           const std::string& creator_version) {
+  return continue_layout(path, last_step, Layout{Layout::Kind::block, n_particles, block, {}},
+                         box_length, box_width, creator_version);
+}
+
+H5mdWriter H5mdWriter::continue_joined_file(const std::string& path, long long last_step,
+                                            long long n_particles,
+                                            const std::vector<H5mdBlock>& blocks, double box_length,
+                                            double box_width, const std::string& creator_version) {
+  return continue_layout(
+      path, last_step,
+      Layout{Layout::Kind::joined, n_particles, H5mdBlock{std::string(), 0, n_particles}, blocks},
+      box_length, box_width, creator_version);
+}
+
+namespace {
+
+H5::FileAccPropList unlocked_access() {
+  H5::FileAccPropList access;
+  if (H5Pset_file_locking(access.getId(), false, true) < 0)
+    throw std::runtime_error("cannot disable file locking");
+  return access;
+}
+
+}  // namespace
+
+H5mdWriter H5mdWriter::continue_layout(const std::string& path, long long last_step,
+                                       const Layout& layout, double box_length, double box_width,
+                                       const std::string& creator_version) {
   const std::string before = path + ".before-resume";
   if (std::rename(path.c_str(), before.c_str()) != 0)
     throw std::runtime_error("H5MD file " + path + ": cannot continue it (missing or not movable)");
   H5::Exception::dontPrint();
   try {
-    H5::FileAccPropList access;
-    if (H5Pset_file_locking(access.getId(), false, true) < 0)
-      throw std::runtime_error("cannot disable file locking");
-    const H5::H5File old(before, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, access);
-    H5mdWriter writer(path, n_particles, box_length, box_width, creator_version);
+    const H5::H5File old(before, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, unlocked_access());
+    H5mdWriter writer(path, layout, box_length, box_width, creator_version, "");
+    const hsize_t rows = hsize_t(layout.rows.count);
     const H5::Group position = old.openGroup("particles/all/position");
-    const H5::Group velocity = old.openGroup("particles/all/velocity");
-    const H5::DataSet x = position.openDataSet("value"), v = velocity.openDataSet("value");
     const std::vector<std::int64_t> steps = read_steps(position);
     const std::vector<double> times = h5::read_doubles(position, "time").values;
-    for (std::size_t row = 0; row < steps.size() && steps[row] <= last_step; ++row) {
-      writer.append_particles(steps[row], times[row], read_frame(x, row, n_particles),
-                              read_frame(v, row, n_particles));
+    if (layout.kind == Layout::Kind::joined) {  // the values are the block files'
+      for (std::size_t row = 0; row < steps.size() && steps[row] <= last_step; ++row)
+        writer.append_joined_frame(steps[row], times[row]);
+    } else {
+      const H5::Group velocity = old.openGroup("particles/all/velocity");
+      const H5::DataSet x = position.openDataSet("value"), v = velocity.openDataSet("value");
+      for (std::size_t row = 0; row < steps.size() && steps[row] <= last_step; ++row) {
+        writer.append_particles(steps[row], times[row], read_frame(x, row, rows),
+                                read_frame(v, row, rows));
+      }
     }
-    const H5::Group observables = old.openGroup("observables");
-    for (hsize_t k = 0; k < observables.getNumObjs(); ++k) {
-      const std::string name = observables.getObjnameByIdx(k);
-      const H5::Group element = observables.openGroup(name);
-      const std::vector<std::int64_t> obs_steps = read_steps(element);
-      const std::vector<double> obs_times = h5::read_doubles(element, "time").values;
-      const std::vector<double> values = h5::read_doubles(element, "value").values;
-      for (std::size_t row = 0; row < obs_steps.size() && obs_steps[row] <= last_step; ++row) {
-        writer.append_observable(name, obs_steps[row], obs_times[row], values[row]);
+    if (layout.kind != Layout::Kind::block) {
+      const H5::Group observables = old.openGroup("observables");
+      for (hsize_t k = 0; k < observables.getNumObjs(); ++k) {
+        const std::string name = observables.getObjnameByIdx(k);
+        const H5::Group element = observables.openGroup(name);
+        const std::vector<std::int64_t> obs_steps = read_steps(element);
+        const std::vector<double> obs_times = h5::read_doubles(element, "time").values;
+        const std::vector<double> values = h5::read_doubles(element, "value").values;
+        for (std::size_t row = 0; row < obs_steps.size() && obs_steps[row] <= last_step; ++row) {
+          writer.append_observable(name, obs_steps[row], obs_times[row], values[row]);
+        }
       }
     }
     std::remove(before.c_str());
@@ -313,6 +479,33 @@ H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_ste
   } catch (const std::exception& e) {
     std::rename(before.c_str(), path.c_str());
     throw std::runtime_error("H5MD file " + path + ": cannot continue it: " + e.what());
+  }
+}
+
+std::vector<std::string> H5mdWriter::joined_block_files(const std::string& path) {
+  H5::Exception::dontPrint();
+  try {
+    const H5::H5File file(path, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, unlocked_access());
+    const H5::DataSet value = file.openDataSet("particles/all/position/value");
+    const H5::DSetCreatPropList props = value.getCreatePlist();
+    std::vector<std::string> files;
+    if (H5Pget_layout(props.getId()) != H5D_VIRTUAL) return files;
+    size_t count = 0;
+    if (H5Pget_virtual_count(props.getId(), &count) < 0)
+      throw std::runtime_error("cannot read its virtual mappings");
+    for (size_t k = 0; k < count; ++k) {
+      const ssize_t length = H5Pget_virtual_filename(props.getId(), k, nullptr, 0);
+      if (length < 0) throw std::runtime_error("cannot read its virtual mappings");
+      std::string name(std::size_t(length) + 1, '\0');
+      H5Pget_virtual_filename(props.getId(), k, name.data(), name.size());
+      name.resize(std::size_t(length));
+      files.push_back(name);
+    }
+    return files;
+  } catch (const H5::Exception& e) {
+    throw std::runtime_error("H5MD file " + path + ": cannot read it: " + e.getDetailMsg());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("H5MD file " + path + ": " + e.what());
   }
 }
 
@@ -345,6 +538,9 @@ void H5mdWriter::append_particles(long long step, double time, const std::vector
   auto& m = impl();
   m.require_open("append_particles");
   const std::string what = "H5MD file " + m.path + ": particles";
+  if (m.layout.kind == Layout::Kind::joined)
+    throw std::logic_error(what +
+                           ": a joined file's rows are its block files' (append_joined_frame)");
   const size_t values = static_cast<size_t>(3 * m.n);
   if (x_xyz.size() != values || v_xyz.size() != values)
     throw std::invalid_argument(what + ": got " + std::to_string(x_xyz.size()) + " positions and " +
@@ -369,6 +565,22 @@ void H5mdWriter::append_particles(long long step, double time, const std::vector
   }
 }
 
+void H5mdWriter::append_joined_frame(long long step, double time) {
+  auto& m = impl();
+  m.require_open("append_joined_frame");
+  const std::string what = "H5MD file " + m.path + ": particles";
+  if (m.layout.kind != Layout::Kind::joined)
+    throw std::logic_error(what + ": append_joined_frame is for a joined file");
+  check_order(m.position, what, step, time);
+  try {
+    append(m.position, step, time, nullptr);
+    m.velocity.frames = m.position.frames;
+    m.file.flush(H5F_SCOPE_LOCAL);
+  } catch (const H5::Exception& e) {
+    m.fail("cannot append particle frame at step " + std::to_string(step), e);
+  }
+}
+
 void H5mdWriter::append_observable(const std::string& name, long long step, double time,
                                    double value) {
   auto& m = impl();
@@ -377,6 +589,8 @@ void H5mdWriter::append_observable(const std::string& name, long long step, doub
   if (!valid_element_name(name))
     throw std::invalid_argument(what + ": not a valid name (non-empty, no '/', not . or ..)");
   try {
+    if (m.layout.kind == Layout::Kind::block)
+      throw std::logic_error(what + ": a block file holds no observables");
     auto it = m.observable.find(name);
     if (it == m.observable.end()) {
       it = m.observable.emplace(name, create_series(m.observables, name, {}, {}, kSeriesChunk))

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "md_bridge/disk_gas.hpp"
+#include "md_bridge/particle_blocks.hpp"
 #include "md_bridge/restitution_calibration.hpp"
 
 namespace granvv::md {
@@ -149,7 +150,14 @@ void LammpsEngine::set_up_sampled(const RangeSampler& sample) {
 
 EngineState LammpsEngine::save_state(bool with_particles) {
   EngineState state;
-  if (lmp_ && with_particles) state.particles = gather_frame();
+  if (lmp_ && with_particles) {  // each rank its block of IDs (all of them on one rank)
+    int rank = 0;
+    MPI_Comm_rank(options_.comm, &rank);
+    MPI_Comm_size(options_.comm, &state.particle_blocks);
+    state.particles =
+        block_frame(local_particles(), local_ids(), options_.particles, options_.comm);
+    state.first_row = id_block(options_.particles, state.particle_blocks, rank).first;
+  }
   state.numbers = {{"t", t_},
                    {"steps", double(steps_)},
                    {"speed", speed_},
@@ -188,10 +196,23 @@ void LammpsEngine::restore_state(const EngineState& state) {
   if (runs_ > 1) first_final_ = contact_for_speed(first_final_speed_);
   lmp_.reset();
   const auto& p = state.particles;
-  if (p.x.empty()) return;  // between runs: the next set_up starts one
-  if (p.x.size() != 3 * std::size_t(options_.particles) || p.v.size() != p.x.size())
+  if (p.x.empty() && state.particle_blocks == 1) return;  // between runs: set_up starts one
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(options_.comm, &rank);
+  MPI_Comm_size(options_.comm, &ranks);
+  const bool blocks = state.particle_blocks > 1;
+  if (blocks && state.particle_blocks != ranks)
+    throw std::invalid_argument("LAMMPS engine state saved over " +
+                                std::to_string(state.particle_blocks) + " ranks, restored on " +
+                                std::to_string(ranks));
+  const IdBlock block =
+      blocks ? id_block(options_.particles, ranks, rank) : IdBlock{0, options_.particles};
+  if (p.x.size() != 3 * std::size_t(block.count) || p.v.size() != p.x.size() ||
+      state.first_row != block.first)
     throw std::invalid_argument("LAMMPS engine state with " + std::to_string(p.x.size() / 3) +
-                                " particles for a scene of " + std::to_string(options_.particles));
+                                " particles from row " + std::to_string(state.first_row) +
+                                " for a scene of " + std::to_string(options_.particles) +
+                                (blocks ? " on " + std::to_string(ranks) + " ranks" : ""));
   // Saved positions may lie up to half the neighbour skin outside the periodic box (LAMMPS maps
   // atoms back only when it rebuilds its lists); their images inside it are the same state.
   ParticleSample sample{p.x, p.v, {}};
@@ -199,7 +220,16 @@ void LammpsEngine::restore_state(const EngineState& state) {
   for (std::size_t i = 0; i < sample.x.size(); i += 3) {
     for (int d = 0; d < 2; ++d) sample.x[i + d] = periodic_image(sample.x[i + d], edge[d]);
   }
-  open_session(sample);
+  if (!blocks) return open_session(sample);
+  // Each rank's block goes to the ranks whose subdomain holds it (1 sigma of margin against
+  // round-off at the cuts: LAMMPS keeps each disk on its owner alone).
+  for (long long i = 0; i < block.count; ++i) sample.id.push_back(block.first + i + 1);
+  new_session();
+  create_disk_box(*lmp_, options_.box_length, options_.box_width);
+  const auto [lo, hi] = lammps_subdomain(*lmp_);
+  add_disks(*lmp_, to_subdomains(sample, lo.data(), hi.data(), 1.0, options_.comm), contact_,
+            options_.particles);
+  add_stress_computes();
 }
 
 double LammpsEngine::advance_to(double t) {
@@ -217,6 +247,12 @@ double LammpsEngine::advance_to(double t) {
 LocalParticles LammpsEngine::local_particles() {
   const int n = lmp_->nlocal();
   return {n > 0 ? lmp_->x()[0] : nullptr, n > 0 ? lmp_->v()[0] : nullptr, lmp_->rmass(), n};
+}
+
+std::vector<long long> LammpsEngine::local_ids() {
+  const int n = lmp_->nlocal();
+  const LammpsTag* tag = lmp_->id();
+  return std::vector<long long>(tag, tag + n);
 }
 
 LocalVirial LammpsEngine::local_virial() {

@@ -60,6 +60,7 @@ class LammpsEngine final : public ParticleEngine {
   void between_segments() override;
   long long steps() const override { return steps_; }
   LocalParticles local_particles() override;
+  std::vector<long long> local_ids() override;
   // -S_xx, -S_yy of LAMMPS's `compute stress/atom NULL pair` (stress x area with the sign of
   // a tension: S_ab = -m v_a v_b - W_ab, of which the pair keyword keeps -W_ab), tallied on the
   // last step of every run (the thermo line, which LAMMPS prints there, invokes it through its

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "md_bridge/box_modes.hpp"
-#include "md_bridge/h5md_writer.hpp"
+#include "md_bridge/h5md_frames.hpp"
 #include "md_bridge/moment_reduction.hpp"
 #include "md_bridge/mpi_environment.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -83,19 +83,19 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   int rank = 0;
   MPI_Comm_rank(engine.comm(), &rank);
 
-  // Particle output in H5MD layout (rank 0 writes; gathering is collective).
-  std::unique_ptr<H5mdWriter> h5md;
-  if (!spec.h5md_path.empty() && rank == 0) {
-    h5md = std::make_unique<H5mdWriter>(
-        resume ? H5mdWriter::continue_file(spec.h5md_path, result.steps, scene.particles, lx, ly,
-                                           spec.creator_version)
-               : H5mdWriter(spec.h5md_path, scene.particles, lx, ly, spec.creator_version));
+  // Particle output in H5MD layout: every rank writes its block of the frames, rank 0 the
+  // observables (h5md_frames.hpp).
+  std::unique_ptr<H5mdFrames> frames;
+  if (!spec.h5md_path.empty()) {
+    frames = std::make_unique<H5mdFrames>(
+        H5mdFrames::Spec{spec.h5md_path, scene.particles, lx, ly, spec.creator_version},
+        engine.comm(), resume ? result.steps : -1);
   }
+  H5mdWriter* h5md = frames ? frames->observables() : nullptr;
   auto write_frame = [&](double time) {
-    if (spec.snapshot_interval <= 0.0 || spec.h5md_path.empty()) return;
+    if (spec.snapshot_interval <= 0.0 || !frames) return;
     if (time < next_frame - 0.5 * engine.time_resolution()) return;
-    const ParticleFrame frame = engine.gather_frame();
-    if (h5md) h5md->append_particles(result.steps, time, frame.x, frame.v);
+    frames->append_frame(result.steps, time, engine);
     next_frame += spec.snapshot_interval;
   };
 
@@ -169,7 +169,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     state.so_far = result;
     state.so_far.status = "running";
     state.so_far.wall_seconds = wall();
-    if (rank == 0) checkpoints.save(state);
+    checkpoints.save(state);  // every rank: each may hold its own block of the particles
   };
 
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step

@@ -26,8 +26,9 @@ struct MdRunSpec {
   int bins = 0;
   std::string kernel;
   double kernel_width = 0.0;  // sigma
-  // H5MD particle snapshots (md_bridge/h5md_writer.hpp): every snapshot_interval of MD time
-  // (0 = none), written by rank 0 to h5md_path; the whole-box observables at every sample.
+  // H5MD particle snapshots (md_bridge/h5md_frames.hpp): every snapshot_interval of MD time
+  // (0 = none), to h5md_path (under MPI each rank its block of IDs beside it, rank 0 the joined
+  // file); the whole-box observables at every sample. The same path on every rank.
   double snapshot_interval = 0.0;
   std::string h5md_path;
   std::string creator_version = "granvv";
@@ -87,7 +88,8 @@ struct MdRunState {
 };
 
 // Checkpoints of a run (docs/outputs.md, "Checkpoints and resume"). After every sample rank 0
-// asks due(); if it says yes, every rank saves the state and rank 0 hands it to save().
+// asks due(); if it says yes, every rank saves the state and hands it to save() (collective:
+// under MPI each rank's state may hold only its block of the particles, EngineState).
 struct MdCheckpoints {
   std::function<bool()> due;
   std::function<void(const MdRunState&)> save;

@@ -86,8 +86,12 @@ using EngineValues = std::vector<std::pair<std::string, double>>;
 // "Checkpoints and resume"): every particle by ID, and the engine's own numbers by name (its
 // clock, step count, collision-rule state and its totals over the runs so far). Without
 // particles it holds the totals only: the state between two runs.
+// An engine that spreads its particles over P > 1 ranks saves on each rank only that rank's
+// block of IDs (particle_blocks.hpp: IDs first_row + 1 ..), so that no rank gathers them all.
 struct EngineState {
   ParticleFrame particles;
+  int particle_blocks = 1;  // P: the ranks the particles are split over (1: all of them here)
+  long long first_row = 0;  // the row of particles' first entry in the whole (its ID - 1)
   EngineValues numbers;
 };
 
@@ -128,19 +132,23 @@ class ParticleEngine {
 
   // This rank's particles, for the coarse-grainer.
   virtual LocalParticles local_particles() = 0;
+  // The IDs (1 .. N) of local_particles(), in its order: where each goes in a particle frame.
+  virtual std::vector<long long> local_ids() = 0;
   // This rank's contact virial, per particle of local_particles() (collective: an engine may
   // need its ranks to exchange contributions of ghost particles).
   virtual LocalVirial local_virial() { return {}; }
-  // All particles, for a particle frame (collective).
+  // All particles on every rank (collective; particle frames use local_ids and
+  // particle_blocks.hpp instead, which gather nothing).
   virtual ParticleFrame gather_frame() = 0;
   // Engine-specific numbers of the current state, taken at every time-series sample.
   virtual EngineValues series_values() const { return {}; }
 
-  // The state now (collective; the same on every rank): after set_up and any advance_to. Without
-  // particles (with_particles false, or between runs) it holds the totals only, gathering
-  // nothing.
+  // The state now (collective; its numbers the same on every rank): after set_up and any
+  // advance_to. Without particles (with_particles false, or between runs) it holds the totals
+  // only, gathering nothing.
   virtual EngineState save_state(bool with_particles) = 0;
-  // Continues from a saved state (collective): the run in progress with its particles, or only
+  // Continues from a saved state (collective): the run in progress with its particles (all of
+  // them on every rank, or each rank its block, as saved on the same number of ranks), or only
   // the totals. Throws std::invalid_argument for a state this engine did not save.
   virtual void restore_state(const EngineState& state) = 0;
 

@@ -23,6 +23,7 @@ import unittest
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 GRANVV = None  # set from argv
 
@@ -351,6 +352,54 @@ class Mpi(FolderState):
         r = self.mpirun(MD_QUICK + ["--out", "/proc/self/x"])  # timeout: a spinning rank fails
         self.assertNotEqual(r.returncode, 0)
         self.assertEqual(r.stderr.count("granvv: error: "), 1, r.stderr)
+
+    def test_a_particle_run_stopped_under_mpirun_resumes_its_block_files(self):
+        # Two ranks write their ID blocks of the H5MD frames to particles_mK.rank000k.h5, joined
+        # by particles_mK.h5, and of their checkpoints to member_m.stepS.rankk.h5
+        # (docs/outputs.md); a resume continues each rank's own files.
+        mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
+        d = self.tmp / "stopped"
+        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE + ["--out", str(d)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.assertTrue(wait_for(lambda: (d / ".granvv-checkpoint" / "member_1.h5").exists(), 120))
+        p.terminate()  # mpirun passes SIGTERM on; under several ranks it ends them
+        p.communicate(timeout=TIMEOUT)
+        self.assertFalse((d / "summary.json").exists())
+        # The checkpoint holds each rank's block of the particles in a file of its own, not all
+        # of them in member_1.h5 (app/md_checkpoint.hpp).
+        c = d / ".granvv-checkpoint"
+        with h5py.File(c / "member_1.h5", "r") as f:
+            self.assertEqual(f["engine"].attrs["particle_blocks"], 2)
+            self.assertEqual(f["engine/x"].shape, (0,))
+            step = int(f.attrs["steps"])
+        for k in (0, 1):
+            with h5py.File(c / f"member_1.step{step}.rank{k}.h5", "r") as f:
+                self.assertEqual(f["x"].shape, (3 * 200,))
+                self.assertEqual(f.attrs["first_row"], 200 * k)
+        self.assertEqual(len(list(c.glob("member_1.step*.rank*.h5"))), 2)  # earlier ones removed
+        # One rank cannot continue a state saved in two blocks, and says how to.
+        r = subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("mpirun -np 2", r.stderr)
+        r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = self.assert_consistent(d, "ok")
+        self.assertTrue(s["md"]["checkpoints"]["resumed"])
+        for m in (0, 1):
+            with h5py.File(d / f"particles_m{m}.h5", "r") as f:
+                steps = f["particles/all/position/step"][()]
+                x = f["particles/all/position/value"]
+                self.assertTrue(x.is_virtual)
+                self.assertEqual(len(steps), 31)  # t = 0, 1, ..., 30
+                self.assertTrue((steps[1:] > steps[:-1]).all())
+                self.assertEqual(x.shape, (31, 400, 2))
+                self.assertTrue(np.isfinite(x[()]).all())  # every row of every frame
+            for k in (0, 1):
+                with h5py.File(d / f"particles_m{m}.rank000{k}.h5", "r") as f:
+                    self.assertEqual(f["particles/all/position/value"].shape, (31, 200, 2))
 
     @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
     def test_a_write_failure_on_rank_0_ends_every_rank(self):

@@ -1,7 +1,8 @@
 // The H5MD particle writer (md_bridge/h5md_writer.hpp) on real files: the H5MD 1.1 layout
 // and attributes, shapes, chunking and values of three frames of 100 particles, wrapping into
 // the box, observables, a file read (from a copy) while the writer is still open, a file left
-// by a killed process, and argument errors.
+// by a killed process, argument errors, and block files joined by virtual datasets (the layout
+// of a run on several MPI ranks) read as one file, also after the folder moved, and continued.
 #include <H5Cpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "md_bridge/h5md_writer.hpp"
+#include "md_bridge/particle_blocks.hpp"
 
 namespace {
 
@@ -123,7 +125,7 @@ void write_frames(H5mdWriter& writer, int first, int last) {
 }
 
 // Checks the first `frames` frames of positions, velocities and observables.
-void expect_frames(const H5::H5File& file, int frames) {
+void expect_frames(const H5::H5File& file, int frames, H5D_layout_t layout = H5D_CHUNKED) {
   for (const std::string element : {"position", "velocity"}) {
     SCOPED_TRACE(element);
     const auto group = file.openGroup("/particles/all/" + element);
@@ -131,7 +133,7 @@ void expect_frames(const H5::H5File& file, int frames) {
     const auto value = group.openDataSet("value");
     ASSERT_EQ(dims_of(value, &max_dims), (std::vector<hsize_t>{hsize_t(frames), kN, 2}));
     EXPECT_EQ(max_dims, (std::vector<hsize_t>{H5S_UNLIMITED, kN, 2}));
-    EXPECT_EQ(value.getCreatePlist().getLayout(), H5D_CHUNKED);
+    EXPECT_EQ(value.getCreatePlist().getLayout(), layout);
     EXPECT_EQ(value.getTypeClass(), H5T_FLOAT);
     const auto step_ds = group.openDataSet("step");
     EXPECT_EQ(step_ds.getTypeClass(), H5T_INTEGER);
@@ -306,6 +308,129 @@ TEST_F(H5mdWriterTest, ContinuedFileKeepsTheFramesUpToTheCheckpointAndAppendsAft
   EXPECT_FALSE(std::filesystem::exists(path + ".before-resume"));
   EXPECT_THROW(H5mdWriter::continue_file(this->file("absent.h5"), 0, kN, kLx, kLy, "test"),
                std::runtime_error);
+}
+
+// Three block files (the ID blocks of three ranks, particle_blocks.hpp) and their joined file,
+// written as md_run writes them: each block its rows, then the joined file the frame's step.
+struct BlockWriters {
+  std::vector<granvv::md::H5mdBlock> blocks;
+  std::vector<H5mdWriter> rows;
+  H5mdWriter joined;
+};
+std::vector<granvv::md::H5mdBlock> three_blocks() {
+  std::vector<granvv::md::H5mdBlock> blocks;
+  for (int k = 0; k < 3; ++k) {
+    const auto b = granvv::md::id_block(kN, 3, k);
+    blocks.push_back({"run.rank000" + std::to_string(k) + ".h5", b.first, b.count});
+  }
+  return blocks;
+}
+void write_block_frames(BlockWriters& w, int first, int last) {
+  for (int f = first; f < last; ++f) {
+    const auto fr = make_frame(f);
+    for (std::size_t k = 0; k < w.blocks.size(); ++k) {
+      const auto& b = w.blocks[k];
+      const std::vector<double> x(fr.x.begin() + 3 * b.first,
+                                  fr.x.begin() + 3 * (b.first + b.count));
+      const std::vector<double> v(fr.v.begin() + 3 * b.first,
+                                  fr.v.begin() + 3 * (b.first + b.count));
+      w.rows[k].append_particles(step_of(f), time_of(f), x, v);
+    }
+    w.joined.append_joined_frame(step_of(f), time_of(f));
+    for (const auto& name : H5mdWriter::standard_observables())
+      w.joined.append_observable(name, step_of(f), time_of(f), 10.0 * f + name.size());
+  }
+}
+
+TEST(H5mdIdBlocks, CoverTheParticlesOnceInOrder) {
+  for (const long long n : {1LL, 5LL, 100LL, 100001LL}) {
+    for (const int ranks : {1, 2, 3, 7, 64}) {
+      long long next = 0;
+      for (int k = 0; k < ranks; ++k) {
+        const auto b = granvv::md::id_block(n, ranks, k);
+        EXPECT_EQ(b.first, next) << n << " " << ranks << " " << k;
+        EXPECT_TRUE(b.count == n / ranks || b.count == n / ranks + 1);
+        for (long long row = b.first; row < b.first + b.count; ++row)
+          ASSERT_EQ(granvv::md::id_block_owner(row, n, ranks), k) << n << " " << ranks;
+        next += b.count;
+      }
+      EXPECT_EQ(next, n);
+    }
+  }
+}
+
+TEST_F(H5mdWriterTest, BlockFilesJoinedByVirtualDatasetsReadAsOneFile) {
+  const auto path = file("run.h5");
+  {
+    BlockWriters w{
+        three_blocks(), {}, H5mdWriter::joined_file(path, kN, three_blocks(), kLx, kLy, "test")};
+    for (const auto& b : w.blocks)
+      w.rows.push_back(H5mdWriter::block_file(file(b.file), kN, b, kLx, kLy, "test"));
+    write_block_frames(w, 0, 3);
+    EXPECT_EQ(w.joined.particle_frames(), 3);
+    EXPECT_EQ(w.rows[1].n_particles(), w.blocks[1].count);
+    EXPECT_THROW(w.joined.append_particles(step_of(3), 1.0, make_frame(3).x, make_frame(3).v),
+                 std::logic_error);
+    EXPECT_THROW(w.rows[0].append_observable("total_energy", step_of(3), 1.0, 0.0),
+                 std::logic_error);
+  }
+  {
+    H5::H5File joined(path, H5F_ACC_RDONLY);
+    expect_frames(joined, 3, H5D_VIRTUAL);
+    const auto ids = read_int64(joined.openDataSet("/particles/all/id"));
+    ASSERT_EQ(ids.size(), std::size_t(kN));
+    for (long long i = 0; i < kN; ++i) EXPECT_EQ(ids[i], i + 1);
+    // A block file holds only its rows: 33, 33 and 34 of the 100.
+    H5::H5File block(file("run.rank0001.h5"), H5F_ACC_RDONLY);
+    EXPECT_EQ(dims_of(block.openDataSet("/particles/all/position/value")),
+              (std::vector<hsize_t>{3, 33, 2}));
+    EXPECT_EQ(read_int64(block.openDataSet("/particles/all/id")).front(), 34);
+    EXPECT_FALSE(block.nameExists("observables"));
+  }
+  EXPECT_EQ(H5mdWriter::joined_block_files(path),
+            (std::vector<std::string>{"run.rank0000.h5", "run.rank0001.h5", "run.rank0002.h5"}));
+  // The block files are found beside the joined file, wherever the folder goes.
+  const fs::path moved = dir_.string() + "_moved";
+  fs::remove_all(moved);
+  fs::rename(dir_, moved);
+  {
+    H5::H5File joined((moved / "run.h5").string(), H5F_ACC_RDONLY);
+    expect_frames(joined, 3, H5D_VIRTUAL);
+  }
+  fs::rename(moved, dir_);
+  // A missing block file reads as NaN, not as zeros.
+  fs::rename(file("run.rank0002.h5"), file("away.h5"));
+  {
+    H5::H5File joined(path, H5F_ACC_RDONLY);
+    const auto x = read_doubles(joined.openDataSet("/particles/all/position/value"));
+    EXPECT_TRUE(std::isnan(x.at(2 * (kN - 1))));
+    EXPECT_FALSE(std::isnan(x.at(0)));
+  }
+  fs::rename(file("away.h5"), file("run.rank0002.h5"));
+}
+
+// A resumed multi-rank run: each block file and the joined file are cut back to the checkpoint.
+TEST_F(H5mdWriterTest, ContinuedBlockAndJoinedFilesKeepTheFramesUpToTheCheckpoint) {
+  const auto path = file("run.h5");
+  const auto blocks = three_blocks();
+  {
+    BlockWriters w{blocks, {}, H5mdWriter::joined_file(path, kN, blocks, kLx, kLy, "test")};
+    for (const auto& b : blocks)
+      w.rows.push_back(H5mdWriter::block_file(file(b.file), kN, b, kLx, kLy, "test"));
+    write_block_frames(w, 0, 5);
+  }
+  {
+    BlockWriters w{
+        blocks, {}, H5mdWriter::continue_joined_file(path, step_of(2), kN, blocks, kLx, kLy, "t")};
+    for (const auto& b : blocks)
+      w.rows.push_back(
+          H5mdWriter::continue_block_file(file(b.file), step_of(2), kN, b, kLx, kLy, "t"));
+    EXPECT_EQ(w.joined.particle_frames(), 3);
+    EXPECT_EQ(w.rows[2].particle_frames(), 3);
+    write_block_frames(w, 3, 5);
+  }
+  H5::H5File joined(path, H5F_ACC_RDONLY);
+  expect_frames(joined, 5, H5D_VIRTUAL);
 }
 
 TEST_F(H5mdWriterTest, ExtraObservablesAreCreatedOnFirstUse) {
