@@ -14,9 +14,9 @@ void EventCalendar::reset(int particles) {
 // of comparing event times is random, and a mispredicted branch per comparison cost more than
 // the comparisons themselves.
 EventCalendar::Leader EventCalendar::Match::winner() const {
-  const int a = entrant[1].t < entrant[0].t ? 1 : 0;
-  const int b = entrant[3].t < entrant[2].t ? 3 : 2;
-  return entrant[entrant[b].t < entrant[a].t ? b : a];
+  const int a = int(entrant[1].t < entrant[0].t);
+  const int b = 2 + int(entrant[3].t < entrant[2].t);
+  return entrant[a + (b - a) * int(entrant[b].t < entrant[a].t)];
 }
 
 void EventCalendar::reset(const std::vector<double>& times) {
