@@ -376,7 +376,12 @@ class Mpi(FolderState):
             with h5py.File(c / f"member_1.step{step}.rank{k}.h5", "r") as f:
                 self.assertEqual(f["x"].shape, (3 * 200,))
                 self.assertEqual(f.attrs["first_row"], 200 * k)
-        self.assertEqual(len(list(c.glob("member_1.step*.rank*.h5"))), 2)  # earlier ones removed
+        # Earlier steps' blocks are removed once member_1.h5 names the new step; a stop that
+        # lands between writing a step's blocks and that removal leaves at most one superseded
+        # pair, which the next save removes.
+        others = [b for b in c.glob("member_1.step*.rank*.h5")
+                  if not b.name.startswith(f"member_1.step{step}.")]
+        self.assertLessEqual(len(others), 2, others)
         # One rank cannot continue a state saved in two blocks, and says how to.
         r = subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
                            capture_output=True, text=True, timeout=TIMEOUT)
