@@ -146,7 +146,8 @@ std::vector<LadderRung> ladder_of(const AtlasScene& scene) {
 struct Grid {
   std::vector<int> cells;
   std::vector<double> factors;
-  std::vector<int> ensembles;  // the event-driven engine's
+  std::vector<int> ensembles;            // the event-driven engine's
+  std::vector<double> particle_factors;  // and its particle counts
   std::vector<double> max_overlaps;
   std::vector<int> steps_per_contacts;
   std::vector<double> injected_errors;  // the comparison power's eps
@@ -165,6 +166,7 @@ Grid grid_of(const CaseConfig& c, const AtlasScene& scene) {
   if (g.factors.empty()) g.factors = kStepFactors;
   for (long long m : c.integers("atlas.ensembles")) g.ensembles.push_back(int(m));
   if (g.ensembles.empty()) g.ensembles = kEnsembles;
+  g.particle_factors = c.reals("atlas.particle_factors");
   g.max_overlaps = c.reals("atlas.max_overlaps");
   if (g.max_overlaps.empty()) {
     for (double f : kOverlapFactors) g.max_overlaps.push_back(scene.case_max_overlap * f);
@@ -271,11 +273,13 @@ void write_atlas_h5(const fs::path& file, const std::vector<AtlasRun>& runs,
     H5::H5File f(tmp.string(), H5F_ACC_TRUNC);
     H5::Group g = f.createGroup("runs");
     std::vector<std::string> names, status;
-    std::vector<double> cells, factor, ensemble, overlap, spc, adaptive, wall, work;
+    std::vector<double> cells, factor, ensemble, particle_factor, overlap, spc, adaptive, wall,
+        work;
     for (const auto& r : runs) {
       names.push_back(r.setting.model), status.push_back(r.status);
       cells.push_back(r.setting.cells), factor.push_back(r.setting.step_factor);
       ensemble.push_back(r.setting.ensemble), overlap.push_back(r.setting.max_overlap);
+      particle_factor.push_back(r.setting.particle_factor);
       spc.push_back(r.setting.steps_per_contact), adaptive.push_back(r.setting.adaptive_stiffness);
       wall.push_back(r.cost.wall_seconds), work.push_back(r.cost.work);
     }
@@ -284,6 +288,7 @@ void write_atlas_h5(const fs::path& file, const std::vector<AtlasRun>& runs,
     h5::write_vector(g, "cells", cells);
     h5::write_vector(g, "step_factor", factor);
     h5::write_vector(g, "ensemble", ensemble);
+    h5::write_vector(g, "particle_factor", particle_factor);
     h5::write_vector(g, "max_overlap", overlap);
     h5::write_vector(g, "steps_per_contact", spc);
     h5::write_vector(g, "adaptive_stiffness", adaptive);
@@ -353,7 +358,8 @@ json comparison_power_within(const AtlasScene& scene, const std::vector<AtlasRun
                              (r.setting.max_overlap == scene.case_max_overlap &&
                               r.setting.steps_per_contact == scene.case_steps_per_contact &&
                               r.setting.adaptive_stiffness == scene.case_adaptive_stiffness);
-    if (r.setting.model == reference_model && r.status == "ok" && r.fields && own_contact) {
+    if (r.setting.model == reference_model && r.status == "ok" && r.fields && own_contact &&
+        r.setting.particle_factor == 1.0) {
       particle_runs.push_back(&r);
     }
   }
@@ -446,6 +452,8 @@ int atlas_command(const AtlasOptions& options) {
       scene.bins = md_bins;
       const std::optional<MdScene> md = md_scene_from(config, hydro);
       scene.case_ensemble = md->ensemble;
+      scene.case_box_width = config.real("md.box_width");
+      scene.case_particles = config.int_value("md.particles");
       scene.case_max_overlap = config.real("md.max_overlap");
       scene.case_steps_per_contact = config.int_value("md.steps_per_contact");
       scene.case_adaptive_stiffness = config.boolean("md.adaptive_stiffness");
@@ -578,8 +586,9 @@ int atlas_command(const AtlasOptions& options) {
     }
     double planned_seconds = pilot.cost.wall_seconds;
     std::vector<AtlasSetting> grid_settings =
-        is_lammps(model) ? lammps_grid(scene, grid.max_overlaps, grid.steps_per_contacts)
-                         : event_driven_grid(grid.ensembles);
+        is_lammps(model)
+            ? lammps_grid(scene, grid.max_overlaps, grid.steps_per_contacts)
+            : event_driven_grid(grid.ensembles, grid.particle_factors, scene.case_ensemble);
     auto own = [&](const AtlasSetting& s) {
       return is_lammps(model) && s.max_overlap == scene.case_max_overlap &&
              s.steps_per_contact == scene.case_steps_per_contact &&
@@ -617,6 +626,8 @@ int atlas_command(const AtlasOptions& options) {
     const AtlasRun* best = nullptr;
     for (const auto& r : runs) {
       if (r.setting.model != model || r.status != "ok") continue;
+      // The reference keeps the case's particle count: other counts are another scene's size.
+      if (r.setting.particle_factor != 1.0) continue;
       const bool finer =
           !best || (is_particles(model) ? finer_particle_run(r.setting, best->setting)
                                         : (r.setting.cells > best->setting.cells ||

@@ -38,13 +38,20 @@ void put_bias(json& point, const std::string& key, const AtlasRun& run, const At
 
 }  // namespace
 
-std::vector<AtlasSetting> event_driven_grid(const std::vector<int>& ensembles) {
+std::vector<AtlasSetting> event_driven_grid(const std::vector<int>& ensembles,
+                                            const std::vector<double>& particle_factors,
+                                            int case_ensemble) {
   std::vector<AtlasSetting> grid;
-  for (int m : ensembles) {
+  auto add = [&](int m, double f) {
     AtlasSetting s;
     s.model = "particles/event_driven";
     s.ensemble = m;
+    s.particle_factor = f;
     grid.push_back(s);
+  };
+  for (int m : ensembles) add(m, 1.0);
+  for (double f : particle_factors) {
+    if (f != 1.0) add(case_ensemble, f);
   }
   return grid;
 }
@@ -85,7 +92,11 @@ AtlasSetting particle_pilot(const AtlasScene& scene, const std::string& model) {
 
 double particle_estimate(const AtlasSetting& s, const AtlasRun& pilot, const AtlasScene& scene) {
   const double wall = std::max(pilot.cost.wall_seconds, 1e-3);
-  if (!is_lammps(s.model)) return wall * double(s.ensemble) / std::max(1, pilot.setting.ensemble);
+  // The hard disks' work is their collisions: proportional to members times particles.
+  if (!is_lammps(s.model)) {
+    return wall * double(s.ensemble) * s.particle_factor /
+           (std::max(1, pilot.setting.ensemble) * pilot.setting.particle_factor);
+  }
   return wall * atlas::dem_work_ratio(knobs_of(s), knobs_of(pilot.setting), scene.md_t_end,
                                       scene.md_t_haff);
 }

@@ -15,7 +15,11 @@
 namespace granvv::app {
 
 // The event-driven engine at each ensemble size (its only knob: it has no contact).
-std::vector<AtlasSetting> event_driven_grid(const std::vector<int>& ensembles);
+// The event-driven engine at each ensemble size (the case's particles), and at the case's own
+// ensemble with each particle factor other than 1.
+std::vector<AtlasSetting> event_driven_grid(const std::vector<int>& ensembles,
+                                            const std::vector<double>& particle_factors,
+                                            int case_ensemble);
 // LAMMPS at the case's ensemble over max_overlaps x steps_per_contacts with the case's adaptive
 // stiffness, and over max_overlaps at the case's steps_per_contact with it flipped.
 std::vector<AtlasSetting> lammps_grid(const AtlasScene& scene,

@@ -361,6 +361,7 @@ std::string describe(const AtlasSetting& s) {
     std::snprintf(knobs, sizeof knobs, " ensemble=%d", s.ensemble);
   }
   std::string text = s.model + knobs;
+  if (s.particle_factor != 1.0) text += " particle_factor=" + format_real(s.particle_factor);
   if (!s.injected.empty()) text += " " + s.injected + "=" + format_real(s.injected_factor);
   return text;
 }
@@ -369,6 +370,7 @@ json setting_json(const AtlasSetting& s) {
   json j = {{"model", s.model}};
   if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
   if (is_particles(s.model)) j["ensemble"] = s.ensemble;
+  if (is_particles(s.model) && !is_lammps(s.model)) j["particle_factor"] = s.particle_factor;
   if (is_lammps(s.model)) {
     j["max_overlap"] = s.max_overlap;
     j["steps_per_contact"] = s.steps_per_contact;
@@ -393,6 +395,13 @@ std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasS
   } else if (is_particles(s.model)) {
     sets.push_back("md.engine=" + toml_quoted(s.model.substr(10)));
     sets.push_back("md.ensemble=" + std::to_string(s.ensemble));
+    if (s.particle_factor != 1.0) {
+      sets.push_back("md.box_width=" + format_real(scene.case_box_width * s.particle_factor));
+      if (scene.case_particles > 0) {
+        sets.push_back("md.particles=" + std::to_string(std::llround(double(scene.case_particles) *
+                                                                     s.particle_factor)));
+      }
+    }
     if (is_lammps(s.model)) {
       sets.push_back("md.max_overlap=" + format_real(s.max_overlap));
       sets.push_back("md.steps_per_contact=" + std::to_string(s.steps_per_contact));

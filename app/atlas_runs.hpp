@@ -26,6 +26,10 @@ struct AtlasSetting {
   // The particles' knobs: md.ensemble, and LAMMPS's contact (md.max_overlap,
   // md.steps_per_contact, md.adaptive_stiffness; 0 for the event-driven engine, which has none).
   int ensemble = 0;
+  // The event-driven engine's particle count as a factor on the case's (atlas.particle_factors):
+  // md.box_width, and md.particles where the case sets it, times this, so that Lx and the area
+  // fraction stay the case's; 1 for every other run.
+  double particle_factor = 1.0;
   double max_overlap = 0.0;
   int steps_per_contact = 0;
   bool adaptive_stiffness = false;
@@ -99,6 +103,8 @@ struct AtlasScene {
   int case_steps_per_contact = 0;
   bool case_adaptive_stiffness = false;
   long long particle_count = 0;
+  double case_box_width = 0.0;             // md.box_width
+  long long case_particles = 0;            // md.particles (0: the count follows from physics.K)
   double md_t_end = 0.0, md_t_haff = 0.0;  // md.t_end and the kinetic-theory Haff time, MD units
   double t0_theory = 0.0;  // the Enskog kinetic-theory Haff time (with chi), scaled units
   double sigmas = 3.0;     // compare.sigmas: the allowance of σ-aware adequacy

@@ -261,6 +261,10 @@ std::vector<KeySpec> rows_without_initial() {
        "fail as collapse_rule_active"},
       {"atlas.ensembles", kIntegers, kEmpty, increasing(closed_closed(1, 1000)),
        "ensemble sizes of the event-driven engine ([] = 1, 2, 4, ..., 512 within the budget)"},
+      {"atlas.particle_factors", kReals, kEmpty, increasing(closed_closed(0.01, 100)),
+       "event_driven: particle counts as factors on the case's (md.box_width, and md.particles "
+       "where set, times each; Lx and the area fraction kept), each at md.ensemble ([] = the "
+       "case's count only)"},
       {"atlas.max_overlaps", kReals, kEmpty, increasing(open_closed(0, 0.1)),
        "LAMMPS md.max_overlap values ([] = md.max_overlap times 1/2, 1, 2, 5, 10)"},
       {"atlas.steps_per_contacts", kIntegers, kEmpty, increasing(closed_closed(10, 1e4)),

@@ -240,7 +240,8 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
       " --set md.particles=300 --set md.box_width=68 --set md.t_end=10 --set md.sample_interval=1"
       " --set 'md.output_times=[0,5,10]' --set md.ensemble=1 --set 'atlas.ensembles=[2,8]'"
       " --set 'atlas.max_overlaps=[0.05]' --set 'atlas.steps_per_contacts=[15]'"
-      " --set 'atlas.cells=[16,32]' --set 'atlas.step_factors=[1]'";
+      " --set 'atlas.cells=[16,32]' --set 'atlas.step_factors=[1]'"
+      " --set 'atlas.particle_factors=[0.5]'";
   const auto r = run_cli(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = read_json(dir / "atlas.json");
@@ -251,6 +252,7 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
   EXPECT_GT(a["reference"]["statistical_error"]["haff_t0"].get<double>(), 0.0);
   EXPECT_GT(a["reference"]["statistical_error"]["thermal_energy"].get<double>(), 0.0);
   int lammps = 0, event_driven = 0;
+  double half_work = 0.0, full_work = 0.0;  // one member, 150 and 300 disks
   for (const auto& run : a["runs"]) {
     if (run["model"] == "particles/lammps") {
       ++lammps;
@@ -263,10 +265,17 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
       ++event_driven;
       EXPECT_EQ(run["work_unit"], "collisions");
       EXPECT_GT(run["work"].get<double>(), 0.0);
+      if (run["ensemble"] == 1) {
+        (run["particle_factor"] == 0.5 ? half_work : full_work) = run["work"].get<double>();
+      }
     }
   }
   EXPECT_EQ(lammps, 3);
-  EXPECT_EQ(event_driven, 3);  // its pilot (one member), 2 and 8
+  EXPECT_EQ(event_driven, 4);  // its pilot (one member), 2 and 8, and half the disks
+  // Half the disks in half the channel width make half the collisions (to the scatter of one
+  // member's ~370 collisions, a few per cent); the reference stays at the case's count.
+  EXPECT_NEAR(half_work / full_work, 0.5, 0.1) << half_work << " " << full_work;
+  EXPECT_EQ(a["reference"]["setting"]["particle_factor"], 1.0);
   // The DEM map: three contact settings, each with its t0 and P/(nT) bias and their errors.
   const json& dem = a["dem_map"];
   ASSERT_EQ(dem["points"].size(), 3u);
@@ -323,7 +332,7 @@ TEST(AtlasCli, TinyParticleLadderWithBothEngines) {
     EXPECT_EQ(run["status"], "collapse_rule_active") << run.dump();
     active += run["status"] == "collapse_rule_active";
   }
-  EXPECT_EQ(active, 3);
+  EXPECT_EQ(active, 4);
   EXPECT_EQ(b["reference"]["setting"]["model"], "particles/lammps");
 }
 
