@@ -13,6 +13,7 @@
 #include "app/atomic_file.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
+#include "md_bridge/every_rank.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -63,13 +64,6 @@ void write_particles(const fs::path& file, const md::EngineState& e) {
   h5::write_vector(root, "x", e.particles.x);
   h5::write_vector(root, "v", e.particles.v);
   h5.close();
-}
-
-// True on every rank of comm if ok on every one (collective).
-bool everywhere(bool ok, MPI_Comm comm) {
-  int all = ok ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm);
-  return all == 1;
 }
 
 void write_state(const fs::path& file, const MemberCheckpoint& c) {
@@ -228,36 +222,24 @@ void save_member_checkpoint(const fs::path& out_dir, int member, const MemberChe
   MPI_Comm_rank(comm, &rank);
   const md::EngineState& e = c.state.engine;
   const long long step = c.state.so_far.steps;
-  if (e.particle_blocks > 1) {  // every rank its block first, under a name of this step
-    std::string error;
-    try {
-      write_replacing(block_file(out_dir, member, step, rank),
-                      [&](const fs::path& f) { write_particles(f, e); });
-    } catch (const std::exception& x) {
-      error = x.what();
+  const auto write_member = [&] {
+    if (rank != 0) return;
+    write_replacing(member_file(out_dir, member), [&](const fs::path& f) { write_state(f, c); });
+    // The member file names this step's blocks now: the earlier ones go.
+    std::error_code ignored;
+    const std::string prefix = block_prefix(member), own = prefix + std::to_string(step) + ".";
+    for (const auto& entry : fs::directory_iterator(checkpoint_folder(out_dir), ignored)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) == 0 && name.rfind(own, 0) != 0) fs::remove(entry, ignored);
     }
-    if (!everywhere(error.empty(), comm))
-      throw std::runtime_error(error.empty() ? "another rank could not write its checkpoint block"
-                                             : error);
-  }
-  std::string error;
-  if (rank == 0) {
-    try {
-      write_replacing(member_file(out_dir, member), [&](const fs::path& f) { write_state(f, c); });
-      // The member file names this step's blocks now: the earlier ones go.
-      std::error_code ignored;
-      const std::string prefix = block_prefix(member), own = prefix + std::to_string(step) + ".";
-      for (const auto& entry : fs::directory_iterator(checkpoint_folder(out_dir), ignored)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind(prefix, 0) == 0 && name.rfind(own, 0) != 0) fs::remove(entry, ignored);
-      }
-    } catch (const std::exception& x) {
-      error = x.what();
-    }
-  }
-  if (e.particle_blocks > 1 && !everywhere(error.empty(), comm))
-    throw std::runtime_error(error.empty() ? "rank 0 could not write the checkpoint" : error);
-  if (!error.empty()) throw std::runtime_error(error);
+  };
+  if (e.particle_blocks == 1) return write_member();  // rank 0 alone
+  // Every rank its block first, under a name of this step; then rank 0 the member file.
+  md::on_every_rank(comm, [&] {
+    write_replacing(block_file(out_dir, member, step, rank),
+                    [&](const fs::path& f) { write_particles(f, e); });
+  });
+  md::on_every_rank(comm, write_member);
 }
 
 std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, int members,

@@ -45,9 +45,4 @@ std::pair<std::array<double, 2>, std::array<double, 2>> lammps_subdomain(LammpsS
   return {{lo[0], lo[1]}, {hi[0], hi[1]}};
 }
 
-std::pair<double, double> lammps_subdomain_x(LammpsSession& lmp) {
-  const auto [lo, hi] = lammps_subdomain(lmp);
-  return {lo[0], hi[0]};
-}
-
 }  // namespace granvv::md

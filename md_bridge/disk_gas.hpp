@@ -16,15 +16,13 @@ void set_up_disk_gas(LammpsSession& lmp, double box_length, double box_width,
                      const ParticleSample& sample, const ContactModel& contact);
 
 // The same in two parts, for particles drawn after the box is decomposed: the box, then (with
-// this rank's x-range known, lammps_subdomain_x) the disks and their contact. A sample with IDs
+// this rank's subdomain known, lammps_subdomain) the disks and their contact. A sample with IDs
 // may differ from rank to rank; each rank keeps the disks of its own subdomain, and `total` is
 // the number all ranks create together.
 void create_disk_box(LammpsSession& lmp, double box_length, double box_width);
 void add_disks(LammpsSession& lmp, const ParticleSample& sample, const ContactModel& contact,
                long long total);
-// The x-range [lo, hi) of this rank's LAMMPS subdomain.
-std::pair<double, double> lammps_subdomain_x(LammpsSession& lmp);
-// Its lower and upper corners {x, y}.
+// The lower and upper corners {x, y} of this rank's LAMMPS subdomain [lo, hi).
 std::pair<std::array<double, 2>, std::array<double, 2>> lammps_subdomain(LammpsSession& lmp);
 
 }  // namespace granvv::md

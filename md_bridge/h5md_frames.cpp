@@ -1,43 +1,14 @@
 #include "md_bridge/h5md_frames.hpp"
 
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
 
+#include "md_bridge/every_rank.hpp"
 #include "md_bridge/particle_blocks.hpp"
 
 namespace granvv::md {
-namespace {
-
-// Runs `action` on every rank of comm (collective). If it threw on any rank, every rank throws:
-// the first failing rank its own exception, the others a std::runtime_error with its message.
-template <class Action>
-void on_every_rank(MPI_Comm comm, const Action& action) {
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
-  std::exception_ptr error;
-  std::string message;
-  try {
-    action();
-  } catch (const std::exception& e) {
-    error = std::current_exception();
-    message = e.what();
-  }
-  int first = error ? rank : ranks;
-  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
-  if (first == ranks) return;
-  int length = int(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first, comm);
-  message.resize(std::size_t(length));
-  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
-  if (rank == first) std::rethrow_exception(error);
-  throw std::runtime_error(message + " (on rank " + std::to_string(first) + ")");
-}
-
-}  // namespace
 
 std::string block_file_path(const std::string& path, int rank) {
   const std::filesystem::path p = path;

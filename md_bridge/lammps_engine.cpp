@@ -91,17 +91,18 @@ CollisionRuleCheck LammpsEngine::check_collision_rule() {
   return {m.restitution, what.str()};
 }
 
-void LammpsEngine::new_session() {
+std::pair<std::array<double, 2>, std::array<double, 2>> LammpsEngine::open_box() {
   lmp_.reset();  // one LAMMPS instance at a time
   LammpsSessionOptions session;
   session.log_file = options_.log_file;
   session.comm = options_.comm;
   lmp_ = std::make_unique<LammpsSession>(std::move(session));
+  create_disk_box(*lmp_, options_.box_length, options_.box_width);
+  return lammps_subdomain(*lmp_);
 }
 
-void LammpsEngine::open_session(const ParticleSample& sample) {
-  new_session();
-  set_up_disk_gas(*lmp_, options_.box_length, options_.box_width, sample, contact_);
+void LammpsEngine::fill_box(const ParticleSample& sample, long long total) {
+  add_disks(*lmp_, sample, contact_, total);
   add_stress_computes();
 }
 
@@ -126,18 +127,14 @@ void LammpsEngine::set_up_sampled(const RangeSampler& sample) {
     first_final_ = contact_;
     first_final_speed_ = speed_;
   }
-  new_session();
-  create_disk_box(*lmp_, options_.box_length, options_.box_width);
-  const auto [x_lo, x_hi] = lammps_subdomain_x(*lmp_);
-  const ParticleSample particles = sample(x_lo, x_hi);
+  const auto [lo, hi] = open_box();
+  const ParticleSample particles = sample(lo[0], hi[0]);
   // A sample without IDs is the whole box on every rank (its fastest speed is every rank's).
   speed_ = std::max(fastest_relative_speed(particles.v.data(), int(particles.count()),
                                            particles.id.empty() ? MPI_COMM_SELF : options_.comm),
                     1e-12);
   contact_ = contact_for_speed(speed_);
-  add_disks(*lmp_, particles, contact_,
-            particles.id.empty() ? particles.count() : options_.particles);
-  add_stress_computes();
+  fill_box(particles, particles.id.empty() ? particles.count() : options_.particles);
   t_ = 0.0;
   steps_ = 0;
   changes_ = 0;
@@ -220,16 +217,12 @@ void LammpsEngine::restore_state(const EngineState& state) {
   for (std::size_t i = 0; i < sample.x.size(); i += 3) {
     for (int d = 0; d < 2; ++d) sample.x[i + d] = periodic_image(sample.x[i + d], edge[d]);
   }
-  if (!blocks) return open_session(sample);
+  const auto [lo, hi] = open_box();
+  if (!blocks) return fill_box(sample, sample.count());
   // Each rank's block goes to the ranks whose subdomain holds it (1 sigma of margin against
   // round-off at the cuts: LAMMPS keeps each disk on its owner alone).
   for (long long i = 0; i < block.count; ++i) sample.id.push_back(block.first + i + 1);
-  new_session();
-  create_disk_box(*lmp_, options_.box_length, options_.box_width);
-  const auto [lo, hi] = lammps_subdomain(*lmp_);
-  add_disks(*lmp_, to_subdomains(sample, lo.data(), hi.data(), 1.0, options_.comm), contact_,
-            options_.particles);
-  add_stress_computes();
+  fill_box(to_subdomains(sample, lo.data(), hi.data(), 1.0, options_.comm), options_.particles);
 }
 
 double LammpsEngine::advance_to(double t) {

@@ -6,9 +6,11 @@
 // restitution it really gives is measured in LAMMPS by head-on collisions
 // (restitution_calibration.hpp). Every contact model, the calibrated one included, comes from
 // one validated ContactSpec (contact_for_speed).
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "md_bridge/contact_model.hpp"
 #include "md_bridge/lammps_session.hpp"
@@ -90,9 +92,11 @@ class LammpsEngine final : public ParticleEngine {
   LammpsEngineOptions options_;
   std::chrono::steady_clock::time_point made_;
   std::unique_ptr<LammpsSession> lmp_;
-  // A fresh LAMMPS instance on the engine's communicator (the old one closed first).
-  void new_session();
-  void open_session(const ParticleSample& sample);
+  // A fresh LAMMPS instance on the engine's communicator (the old one closed first) with the
+  // empty box: this rank's subdomain (lo, hi), for the particles it is to create.
+  std::pair<std::array<double, 2>, std::array<double, 2>> open_box();
+  // The disks (add_disks: `total` over all ranks) at contact_, and the stress computes.
+  void fill_box(const ParticleSample& sample, long long total);
   void add_stress_computes();  // and the thermo line that tallies them
   ContactModel contact_;
   double speed_ = 0.0;  // relative speed the contact was made for
