@@ -204,6 +204,12 @@ struct H5mdWriter::Layout {
   long long n = 0;                // particles in a frame of the run
   H5mdBlock rows;                 // the rows this file holds (whole and joined: all N)
   std::vector<H5mdBlock> blocks;  // joined: the block files
+
+  static Layout whole(long long n) { return {Kind::whole, n, H5mdBlock{std::string(), 0, n}, {}}; }
+  static Layout block(long long n, const H5mdBlock& rows) { return {Kind::block, n, rows, {}}; }
+  static Layout joined(long long n, const std::vector<H5mdBlock>& blocks) {
+    return {Kind::joined, n, H5mdBlock{std::string(), 0, n}, blocks};
+  }
 };
 
 struct H5mdWriter::Impl {
@@ -256,25 +262,21 @@ std::string layout_problem(long long n, const H5mdBlock& rows, const std::vector
 H5mdWriter::H5mdWriter(const std::string& path, long long n_particles, double box_length,
                        double box_width, const std::string& creator_version,
                        const std::string& author)
-    : H5mdWriter(
-          path,
-          Layout{Layout::Kind::whole, n_particles, H5mdBlock{std::string(), 0, n_particles}, {}},
-          box_length, box_width, creator_version, author) {}
+    : H5mdWriter(path, Layout::whole(n_particles), box_length, box_width, creator_version, author) {
+}
 
 H5mdWriter H5mdWriter::block_file(const std::string& path, long long n_particles,
                                   const H5mdBlock& block, double box_length, double box_width,
                                   const std::string& creator_version) {
-  return H5mdWriter(path, Layout{Layout::Kind::block, n_particles, block, {}}, box_length,
-                    box_width, creator_version, "");
+  return H5mdWriter(path, Layout::block(n_particles, block), box_length, box_width, creator_version,
+                    "");
 }
 
 H5mdWriter H5mdWriter::joined_file(const std::string& path, long long n_particles,
                                    const std::vector<H5mdBlock>& blocks, double box_length,
                                    double box_width, const std::string& creator_version) {
-  return H5mdWriter(
-      path,
-      Layout{Layout::Kind::joined, n_particles, H5mdBlock{std::string(), 0, n_particles}, blocks},
-      box_length, box_width, creator_version, "");
+  return H5mdWriter(path, Layout::joined(n_particles, blocks), box_length, box_width,
+                    creator_version, "");
 }
 
 H5mdWriter::H5mdWriter(const std::string& path, const Layout& layout, double box_length,
@@ -398,28 +400,24 @@ std::vector<double> read_frame(const H5::DataSet& value, hsize_t row, hsize_t n)
 H5mdWriter H5mdWriter::continue_file(const std::string& path, long long last_step,
                                      long long n_particles, double box_length, double box_width,
                                      const std::string& creator_version) {
-  return continue_layout(
-      path, last_step,
-      Layout{Layout::Kind::whole, n_particles, H5mdBlock{std::string(), 0, n_particles}, {}},
-      box_length, box_width, creator_version);
+  return continue_layout(path, last_step, Layout::whole(n_particles), box_length, box_width,
+                         creator_version);
 }
 
 H5mdWriter H5mdWriter::continue_block_file(const std::string& path, long long last_step,
                                            long long n_particles, const H5mdBlock& block,
                                            double box_length, double box_width,
                                            const std::string& creator_version) {
-  return continue_layout(path, last_step, Layout{Layout::Kind::block, n_particles, block, {}},
-                         box_length, box_width, creator_version);
+  return continue_layout(path, last_step, Layout::block(n_particles, block), box_length, box_width,
+                         creator_version);
 }
 
 H5mdWriter H5mdWriter::continue_joined_file(const std::string& path, long long last_step,
                                             long long n_particles,
                                             const std::vector<H5mdBlock>& blocks, double box_length,
                                             double box_width, const std::string& creator_version) {
-  return continue_layout(
-      path, last_step,
-      Layout{Layout::Kind::joined, n_particles, H5mdBlock{std::string(), 0, n_particles}, blocks},
-      box_length, box_width, creator_version);
+  return continue_layout(path, last_step, Layout::joined(n_particles, blocks), box_length,
+                         box_width, creator_version);
 }
 
 namespace {
