@@ -14,9 +14,8 @@ namespace {
 
 constexpr double kSigma = 1.0;  // disk diameter and mass are the units (particle_scene.hpp)
 // Cells hold about this many disks on average (at least sigma wide): fewer cells mean more
-// pairs to test per prediction, more cells more crossing events. For a dilute
-// gas on this machine 0.5, 1 and 2 per cell gave the same speed within the noise of a
-// loaded machine (docs/md_benchmarks.md).
+// pairs to test per prediction, more cells more crossing events. 1 was the fastest of 0.7, 1
+// and 2 in both a dilute and a dense gas (docs/md_benchmarks.md §4).
 constexpr double kDisksPerCell = 1.0;
 // The cell edge exceeds sigma by this much, so that a partner at contact is always in the
 // neighbourhood despite the round-off of positions near a face.
@@ -113,6 +112,9 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
                                 " particles for a scene of " + std::to_string(options_.particles));
   }
   disks_.assign(std::size_t(n), Disk{});
+  count_.assign(std::size_t(n), 0);
+  event_.assign(std::size_t(n), kCollision);
+  epoch_ = t;
   soonest_.assign(std::size_t(n), Soonest{});
   last_impact_.assign(std::size_t(n), -kNever);
   id_.assign(std::size_t(n), 0);
@@ -123,13 +125,12 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
     d.y = periodic_image(x[3 * std::size_t(i) + 1], options_.box_width);
     d.vx = v[3 * std::size_t(i)];
     d.vy = v[3 * std::size_t(i) + 1];
-    d.t = t;
     id_[std::size_t(i)] = i;
     cells_->insert(i, cells_->cell_at(d.x, d.y));
   }
   t_ = t;
   calendar_.reset(n);
-  order_by_cell();
+  order_by_cell(t);
   for (int i = 0; i < n; ++i) predict(i, t);
   mass_.assign(std::size_t(n), 1.0);
   x_.assign(3 * std::size_t(n), 0.0);
@@ -163,55 +164,81 @@ double EventDrivenEngine::image(double d, int wrap, double length) {
   return d;
 }
 
-void EventDrivenEngine::fly(Disk& d, double t) const {
-  d.x += d.vx * (t - d.t);
-  d.y += d.vy * (t - d.t);
-  d.t = t;
+void EventDrivenEngine::rebase(double t) {
+  for (Disk& d : disks_) {
+    d.x = x_at(d, t);
+    d.y = y_at(d, t);
+  }
+  epoch_ = t;
 }
 
-// Touching a disk of a neighbouring cell (at its position now, computed without moving it, in
-// that cell's periodic image) sooner than the soonest collision found so far.
-void EventDrivenEngine::scan(int i, double now, const PeriodicCells::Neighbour& cell) {
+// The disks of a neighbouring cell seen from disk i now (each computed without moving it, in
+// that cell's periodic image).
+void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour& cell) {
   const Disk& a = disks_[std::size_t(i)];
-  Soonest& s = soonest_[std::size_t(i)];
+  Candidates& c = candidates_;
+  const double since = now - epoch_;
   for (int j = cells_->first(cell.cell); j >= 0; j = cells_->next(j)) {
-    if (j == i) continue;
-    const Disk& b = disks_[std::size_t(j)];
-    const double dx = image(a.x - (b.x + b.vx * (now - b.t)), cell.wrap_x, options_.box_length);
-    const double dy = image(a.y - (b.y + b.vy * (now - b.t)), cell.wrap_y, options_.box_width);
-    const double dt = contact_time(dx, dy, a.vx - b.vx, a.vy - b.vy, kSigma);
-    if (now + dt < s.t) {
-      s.t = now + dt;
-      s.partner = j;
-      s.partner_count = b.count;
+    if (c.size == c.disk.size()) {
+      const std::size_t more = std::max<std::size_t>(64, 2 * c.size);
+      for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy, &c.t}) column->resize(more);
+      c.disk.resize(more);
+    }
+    const Disk& b = disks_[std::size_t(j)];  // b = a itself never touches (contact_time)
+    const std::size_t k = c.size++;
+    c.dvx[k] = a.vx - b.vx;
+    c.dvy[k] = a.vy - b.vy;
+    c.dx[k] = image(a.x - b.x + c.dvx[k] * since, cell.wrap_x, options_.box_length);
+    c.dy[k] = image(a.y - b.y + c.dvy[k] * since, cell.wrap_y, options_.box_width);
+    c.disk[k] = j;
+  }
+}
+
+void EventDrivenEngine::choose_soonest(int i, double now) {
+  Candidates& c = candidates_;
+  const std::size_t n = c.size;
+  const double* dx = c.dx.data();
+  const double* dy = c.dy.data();
+  const double* dvx = c.dvx.data();
+  const double* dvy = c.dvy.data();
+  double* t = c.t.data();
+  for (std::size_t k = 0; k < n; ++k) t[k] = contact_time(dx[k], dy[k], dvx[k], dvy[k], kSigma);
+  Soonest& s = soonest_[std::size_t(i)];
+  for (std::size_t k = 0; k < n; ++k) {
+    if (now + t[k] < s.t) {
+      s.t = now + t[k];
+      s.partner = c.disk[k];
+      s.partner_count = count_[std::size_t(c.disk[k])];
     }
   }
+  c.size = 0;
 }
 
 // The earlier of its soonest collision and leaving its cell.
 void EventDrivenEngine::schedule(int i, double now) {
-  Disk& a = disks_[std::size_t(i)];
+  const Disk& a = disks_[std::size_t(i)];
   const int cell = cells_->cell_of(i);
   double soonest = soonest_[std::size_t(i)].t;
-  a.event = kCollision;
+  std::int8_t event = kCollision;
   const double x_low = cells_->x_low(cell), y_low = cells_->y_low(cell);
   if (a.vx != 0.0) {
     const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
-    const double t = now + std::max(0.0, (edge - a.x) / a.vx);
-    if (t < soonest) soonest = t, a.event = 0;
+    const double t = now + std::max(0.0, (edge - x_at(a, now)) / a.vx);
+    if (t < soonest) soonest = t, event = 0;
   }
   if (a.vy != 0.0) {
     const double edge = a.vy > 0.0 ? y_low + cells_->cell_width() : y_low;
-    const double t = now + std::max(0.0, (edge - a.y) / a.vy);
-    if (t < soonest) soonest = t, a.event = 1;
+    const double t = now + std::max(0.0, (edge - y_at(a, now)) / a.vy);
+    if (t < soonest) soonest = t, event = 1;
   }
+  event_[std::size_t(i)] = event;
   calendar_.set(i, soonest);  // never if at rest and alone: others will find it
 }
 
 void EventDrivenEngine::predict(int i, double now) {
-  fly(disks_[std::size_t(i)], now);
   soonest_[std::size_t(i)] = {kNever, -1, 0};
-  for (const auto& c : cells_->neighbourhood(cells_->cell_of(i))) scan(i, now, c);
+  for (const auto& c : cells_->neighbourhood(cells_->cell_of(i))) gather(i, now, c);
+  choose_soonest(i, now);
   schedule(i, now);
 }
 
@@ -220,22 +247,21 @@ void EventDrivenEngine::predict(int i, double now) {
 // that partner has changed course (then the whole neighbourhood is scanned again).
 void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int direction) {
   const Soonest& s = soonest_[std::size_t(i)];
-  if (s.partner >= 0 && disks_[std::size_t(s.partner)].count != s.partner_count) {
+  if (s.partner >= 0 && count_[std::size_t(s.partner)] != s.partner_count) {
     predict(i, now);
     return;
   }
-  fly(disks_[std::size_t(i)], now);
-  for (const auto& c : cells_->entering(cells_->cell_of(i), axis, direction)) scan(i, now, c);
+  for (const auto& c : cells_->entering(cells_->cell_of(i), axis, direction)) gather(i, now, c);
+  choose_soonest(i, now);
   schedule(i, now);
 }
 
 void EventDrivenEngine::collide(int i, int j, double now) {
   Disk& a = disks_[std::size_t(i)];
   Disk& b = disks_[std::size_t(j)];
-  fly(a, now);
-  fly(b, now);
-  const double dx = minimum_image(a.x - b.x, options_.box_length);
-  const double dy = minimum_image(a.y - b.y, options_.box_width);
+  const double since_epoch = now - epoch_;
+  const double dx = minimum_image(x_at(a, now) - x_at(b, now), options_.box_length);
+  const double dy = minimum_image(y_at(a, now) - y_at(b, now), options_.box_width);
   // The impulse along the separation itself, not a normalised normal: then the elastic map
   // conserves energy in floating point without the bias of rounding |n| to 1 (1e-12 over 1e7
   // collisions needs it).
@@ -254,22 +280,27 @@ void EventDrivenEngine::collide(int i, int j, double now) {
     }
     last_impact_[std::size_t(i)] = last_impact_[std::size_t(j)] = now;
     const double k = normal_impulse(-closing, r) / separation2;  // J / |r|
+    // New velocities, and the epoch positions moved so that the positions now stay.
     a.vx += k * dx;
     a.vy += k * dy;
     b.vx -= k * dx;
     b.vy -= k * dy;
+    a.x -= k * dx * since_epoch;
+    a.y -= k * dy * since_epoch;
+    b.x += k * dx * since_epoch;
+    b.y += k * dy * since_epoch;
     approach_sum_ += approach;
     recoil_sum_ += r * approach;
     // The pair's midpoint picks the bin of its virial, r_ij . Delta p_i = k |r|^2.
-    const double mid = periodic_image(b.x + 0.5 * dx, options_.box_length);
+    const double mid = periodic_image(x_at(b, now) + 0.5 * dx, options_.box_length);
     const int bin =
         std::clamp(int(std::floor((mid / options_.box_length + 0.5) * options_.virial_bins)), 0,
                    options_.virial_bins - 1);
     virial_sum_[std::size_t(bin)] += k * separation2;
     tally_.add(id_[std::size_t(i)], id_[std::size_t(j)], k * dx * dx, k * dy * dy);
   }
-  ++a.count;
-  ++b.count;
+  ++count_[std::size_t(i)];
+  ++count_[std::size_t(j)];
   ++collisions_, ++all_collisions_, ++segment_collisions_;
   predict(i, now);
   predict(j, now);
@@ -277,7 +308,6 @@ void EventDrivenEngine::collide(int i, int j, double now) {
 
 void EventDrivenEngine::cross(int i, int axis, double now) {
   Disk& a = disks_[std::size_t(i)];
-  fly(a, now);
   const int direction = (axis == 0 ? a.vx : a.vy) > 0.0 ? 1 : -1;
   bool wraps = false;
   const int to = cells_->across(cells_->cell_of(i), axis, direction, wraps);
@@ -300,12 +330,12 @@ double EventDrivenEngine::advance_to(double t) {
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
   const long long events_at_begin = events_;
   while (calendar_.next_time() <= t) {
-    if (double(events_ - ordered_at_) > kEventsPerReorder * n) order_by_cell();
+    if (double(events_ - ordered_at_) > kEventsPerReorder * n) order_by_cell(calendar_.next_time());
     const int i = calendar_.next();
     const double now = calendar_.next_time();
-    const int axis = disks_[std::size_t(i)].event;
+    const int axis = event_[std::size_t(i)];
     const Soonest s = soonest_[std::size_t(i)];
-    if (axis == kCollision && s.partner_count != disks_[std::size_t(s.partner)].count) {
+    if (axis == kCollision && s.partner_count != count_[std::size_t(s.partner)]) {
       predict(i, now);  // the partner changed course: look again from here
       continue;
     }
@@ -351,7 +381,8 @@ double EventDrivenEngine::advance_to(double t) {
   return t_;
 }
 
-void EventDrivenEngine::order_by_cell() {
+void EventDrivenEngine::order_by_cell(double now) {
+  rebase(now);
   const std::size_t n = disks_.size();
   // A counting sort by cell (stable: within a cell, the order they had).
   std::vector<int> begin(std::size_t(cells_->columns()) * std::size_t(cells_->rows()) + 1, 0);
@@ -368,6 +399,8 @@ void EventDrivenEngine::order_by_cell() {
   for (std::size_t k = 0; k < n; ++k) cell[k] = cells_->cell_of(by_cell[k]);
   const auto partner = [&](int j) { return j >= 0 ? renumbered[std::size_t(j)] : j; };
   std::vector<Disk> disks(n);
+  std::vector<std::uint32_t> count(n);
+  std::vector<std::int8_t> event(n);
   std::vector<Soonest> soonest(n);
   std::vector<double> last_impact(n);
   std::vector<int> id(n);
@@ -375,6 +408,8 @@ void EventDrivenEngine::order_by_cell() {
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = std::size_t(by_cell[k]);
     disks[k] = disks_[i];
+    count[k] = count_[i];
+    event[k] = event_[i];
     soonest[k] = soonest_[i];
     soonest[k].partner = partner(soonest[k].partner);
     last_impact[k] = last_impact_[i];
@@ -382,6 +417,8 @@ void EventDrivenEngine::order_by_cell() {
     times[k] = calendar_.time(int(i));
   }
   disks_.swap(disks);
+  count_.swap(count);
+  event_.swap(event);
   soonest_.swap(soonest);
   last_impact_.swap(last_impact);
   id_.swap(id);
@@ -393,9 +430,9 @@ void EventDrivenEngine::order_by_cell() {
 }
 
 void EventDrivenEngine::synchronise() {
+  rebase(t_);
   for (std::size_t i = 0; i < disks_.size(); ++i) {
-    Disk& d = disks_[i];
-    fly(d, t_);
+    const Disk& d = disks_[i];
     const std::size_t id = std::size_t(id_[i]);
     x_[3 * id] = periodic_image(d.x, options_.box_length);
     x_[3 * id + 1] = periodic_image(d.y, options_.box_width);
@@ -431,7 +468,7 @@ EngineValues EventDrivenEngine::series_values() const {
 double EventDrivenEngine::smallest_separation() const {
   double closest = kNever;
   for (std::size_t i = 0; i < disks_.size(); ++i) {
-    const Disk& a = disks_[i];  // every disk is at t_ (synchronise)
+    const Disk& a = disks_[i];  // every disk is at t_ = epoch_ (synchronise)
     for (const auto& c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
       for (int j = cells_->first(c.cell); j >= 0; j = cells_->next(j)) {
         if (std::size_t(j) <= i) continue;
