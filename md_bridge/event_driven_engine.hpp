@@ -103,7 +103,7 @@ class EventDrivenEngine final : public ParticleEngine {
   static constexpr double kCheckSpeed = 1.0;
 
  private:
-  // What the neighbour scan reads of every candidate: 32 bytes, two to a cache line, in cell
+  // What gather reads of every candidate: 32 bytes, two to a cache line, in cell
   // order (order_by_cell). (x, y) is the disk's position on its straight flight extended to the
   // engine's epoch_, so that no candidate needs a clock of its own: at time t the disk is at
   // (x + vx (t - epoch_), y + vy (t - epoch_)).
@@ -155,9 +155,7 @@ class EventDrivenEngine final : public ParticleEngine {
   std::vector<Disk> disks_;  // in cell order after each order_by_cell
   double epoch_ = 0.0;
   std::vector<std::uint32_t> count_;  // collisions of each disk so far
-  // What each disk's calendar entry is: its soonest collision (kCollision) or leaving its cell
-  // along axis 0 (x) or 1 (y).
-  std::vector<std::int8_t> event_;
+  std::vector<std::int8_t> event_;    // each disk's calendar entry: kCollision or an axis
   std::vector<Soonest> soonest_;
   // Time of each disk's last impact, for the TC rule (-infinity before its first in this
   // engine; a resumed run starts without that history).
