@@ -154,16 +154,6 @@ double EventDrivenEngine::minimum_image(double d, double length) const {
   return d;
 }
 
-// A disk's coordinate lies in its own cell (cell changes and wraps happen at its crossings), so
-// the separation from a disk of a neighbouring cell is d = a - b in the cell's image: d - L or
-// d + L across the box's face (the same operations as minimum_image wherever the two agree,
-// i.e. with at least 4 cells along the side).
-double EventDrivenEngine::image(double d, int wrap, double length) {
-  if (wrap > 0) return d - length;
-  if (wrap < 0) return d + length;
-  return d;
-}
-
 void EventDrivenEngine::rebase(double t) {
   for (Disk& d : disks_) {
     d.x = x_at(d, t);
@@ -172,28 +162,44 @@ void EventDrivenEngine::rebase(double t) {
   epoch_ = t;
 }
 
-// The disks of a neighbouring cell seen from disk i now (each computed without moving it, in
-// that cell's periodic image).
-void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour& cell) {
-  const Disk& a = disks_[std::size_t(i)];
-  Candidates& c = candidates_;
+// The disks of the given cells seen from disk i now (each computed without moving it, in its
+// cell's periodic image). The candidate columns are held in locals: stores through them could
+// otherwise alias the engine's members and force a reload of every pointer per candidate.
+void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour* cells,
+                               int count) {
+  const Disk a = disks_[std::size_t(i)];
   const double since = now - epoch_;
-  for (int j = cells_->first(cell.cell); j >= 0; j = cells_->next(j)) {
-    if (c.size == c.disk.size()) {
-      const std::size_t more = std::max<std::size_t>(64, 2 * c.size);
-      for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy, &c.t}) column->resize(more);
-      c.disk.resize(more);
+  const Disk* const disks = disks_.data();
+  const int* const next = cells_->members();
+  Candidates& c = candidates_;
+  std::size_t k = c.size, capacity = c.disk.size();
+  double *dx = c.dx.data(), *dy = c.dy.data(), *dvx = c.dvx.data(), *dvy = c.dvy.data();
+  int* disk = c.disk.data();
+  for (int m = 0; m < count; ++m) {
+    const PeriodicCells::Neighbour& cell = cells[m];
+    for (int j = cells_->first(cell.cell); j >= 0; j = next[j]) {
+      if (k == capacity) {  // a dense cluster has no fixed bound on candidates
+        capacity = std::max<std::size_t>(64, 2 * k);
+        for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy, &c.t}) column->resize(capacity);
+        c.disk.resize(capacity);
+        dx = c.dx.data(), dy = c.dy.data(), dvx = c.dvx.data(), dvy = c.dvy.data();
+        disk = c.disk.data();
+      }
+      const Disk& b = disks[j];  // b = a itself never touches (contact_time)
+      const double vx = a.vx - b.vx, vy = a.vy - b.vy;
+      dvx[k] = vx;
+      dvy[k] = vy;
+      dx[k] = a.x - b.x + vx * since - cell.shift_x;
+      dy[k] = a.y - b.y + vy * since - cell.shift_y;
+      disk[k] = j;
+      ++k;
     }
-    const Disk& b = disks_[std::size_t(j)];  // b = a itself never touches (contact_time)
-    const std::size_t k = c.size++;
-    c.dvx[k] = a.vx - b.vx;
-    c.dvy[k] = a.vy - b.vy;
-    c.dx[k] = image(a.x - b.x + c.dvx[k] * since, cell.wrap_x, options_.box_length);
-    c.dy[k] = image(a.y - b.y + c.dvy[k] * since, cell.wrap_y, options_.box_width);
-    c.disk[k] = j;
   }
+  c.size = k;
 }
 
+// The first of the earliest contacts, chosen without branches (whether a candidate is sooner is
+// as unpredictable as whether it approaches).
 void EventDrivenEngine::choose_soonest(int i, double now) {
   Candidates& c = candidates_;
   const std::size_t n = c.size;
@@ -204,12 +210,18 @@ void EventDrivenEngine::choose_soonest(int i, double now) {
   double* t = c.t.data();
   for (std::size_t k = 0; k < n; ++k) t[k] = contact_time(dx[k], dy[k], dvx[k], dvy[k], kSigma);
   Soonest& s = soonest_[std::size_t(i)];
+  double soonest = s.t;
+  std::ptrdiff_t found = -1;
   for (std::size_t k = 0; k < n; ++k) {
-    if (now + t[k] < s.t) {
-      s.t = now + t[k];
-      s.partner = c.disk[k];
-      s.partner_count = count_[std::size_t(c.disk[k])];
-    }
+    const double at = now + t[k];
+    const bool sooner = at < soonest;
+    soonest = sooner ? at : soonest;
+    found = sooner ? std::ptrdiff_t(k) : found;
+  }
+  if (found >= 0) {
+    s.t = soonest;
+    s.partner = c.disk[std::size_t(found)];
+    s.partner_count = count_[std::size_t(s.partner)];
   }
   c.size = 0;
 }
@@ -217,10 +229,9 @@ void EventDrivenEngine::choose_soonest(int i, double now) {
 // The earlier of its soonest collision and leaving its cell.
 void EventDrivenEngine::schedule(int i, double now) {
   const Disk& a = disks_[std::size_t(i)];
-  const int cell = cells_->cell_of(i);
   double soonest = soonest_[std::size_t(i)].t;
   std::int8_t event = kCollision;
-  const double x_low = cells_->x_low(cell), y_low = cells_->y_low(cell);
+  const double x_low = cells_->x_low(i), y_low = cells_->y_low(i);
   if (a.vx != 0.0) {
     const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
     const double t = now + std::max(0.0, (edge - x_at(a, now)) / a.vx);
@@ -237,7 +248,8 @@ void EventDrivenEngine::schedule(int i, double now) {
 
 void EventDrivenEngine::predict(int i, double now) {
   soonest_[std::size_t(i)] = {kNever, -1, 0};
-  for (const auto& c : cells_->neighbourhood(cells_->cell_of(i))) gather(i, now, c);
+  const auto around = cells_->neighbourhood_of(i);
+  gather(i, now, around.data(), int(around.size()));
   choose_soonest(i, now);
   schedule(i, now);
 }
@@ -251,7 +263,8 @@ void EventDrivenEngine::predict_after_crossing(int i, double now, int axis, int 
     predict(i, now);
     return;
   }
-  for (const auto& c : cells_->entering(cells_->cell_of(i), axis, direction)) gather(i, now, c);
+  const auto joined = cells_->entering(i, axis, direction);
+  gather(i, now, joined.data(), int(joined.size()));
   choose_soonest(i, now);
   schedule(i, now);
 }
@@ -309,13 +322,10 @@ void EventDrivenEngine::collide(int i, int j, double now) {
 void EventDrivenEngine::cross(int i, int axis, double now) {
   Disk& a = disks_[std::size_t(i)];
   const int direction = (axis == 0 ? a.vx : a.vy) > 0.0 ? 1 : -1;
-  bool wraps = false;
-  const int to = cells_->across(cells_->cell_of(i), axis, direction, wraps);
-  if (wraps) {
+  if (cells_->step(i, axis, direction)) {
     if (axis == 0) a.x -= direction * options_.box_length;
     if (axis == 1) a.y -= direction * options_.box_width;
   }
-  cells_->move(i, to);
   ++crossings_, ++all_crossings_;
   predict_after_crossing(i, now, axis, direction);
 }
@@ -469,7 +479,7 @@ double EventDrivenEngine::smallest_separation() const {
   double closest = kNever;
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     const Disk& a = disks_[i];  // every disk is at t_ = epoch_ (synchronise)
-    for (const auto& c : cells_->neighbourhood(cells_->cell_of(int(i)))) {
+    for (const auto& c : cells_->neighbourhood_of(int(i))) {
       for (int j = cells_->first(c.cell); j >= 0; j = cells_->next(j)) {
         if (std::size_t(j) <= i) continue;
         const Disk& b = disks_[std::size_t(j)];

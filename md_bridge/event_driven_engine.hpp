@@ -130,9 +130,9 @@ class EventDrivenEngine final : public ParticleEngine {
   // did), or after it entered a new cell from the three cells that joined the neighbourhood.
   void predict(int i, double now);
   void predict_after_crossing(int i, double now, int axis, int direction);
-  // The candidates of disk i in a cell: their separation from it now (in the cell's image) and
-  // their relative velocity, appended to candidates_.
-  void gather(int i, double now, const PeriodicCells::Neighbour& cell);
+  // The candidates of disk i in `count` cells: their separation from it now (in each cell's
+  // image) and their relative velocity, appended to candidates_.
+  void gather(int i, double now, const PeriodicCells::Neighbour* cells, int count);
   // The soonest contact of disk i among candidates_, if sooner than its soonest so far.
   void choose_soonest(int i, double now);
   void schedule(int i, double now);
@@ -145,8 +145,6 @@ class EventDrivenEngine final : public ParticleEngine {
   void order_by_cell(double now);
   // The nearest image of a separation d along a side of the given length: for disks at contact.
   double minimum_image(double d, double length) const;
-  // The separation d = a - b of a disk b of a neighbouring cell, in that cell's image (wrap).
-  static double image(double d, int wrap, double length);
 
   EventDrivenOptions options_;
   std::chrono::steady_clock::time_point made_;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 namespace granvv::md {
 
@@ -27,9 +26,8 @@ PeriodicCells::PeriodicCells(double box_length, double box_width, double min_wid
   wx_ = lx_ / nx_;
   wy_ = ly_ / ny_;
   first_.assign(std::size_t(nx_) * std::size_t(ny_), -1);
-  cell_.assign(std::size_t(particles), -1);
-  next_.assign(std::size_t(particles), -1);
-  previous_.assign(std::size_t(particles), -1);
+  for (auto* per_particle : {&cell_, &column_, &row_, &next_, &previous_})
+    per_particle->assign(std::size_t(particles), -1);
 }
 
 int PeriodicCells::cell_at(double x, double y) const {
@@ -40,24 +38,27 @@ int PeriodicCells::cell_at(double x, double y) const {
 
 namespace {
 
-// Column (or row) c + offset of n, and the image of its members: +1 past the last, -1 before
-// the first.
-std::pair<int, int> wrapped(int c, int n) {
-  if (c < 0) return {c + n, -1};
-  if (c >= n) return {c - n, 1};
-  return {c, 0};
+// Column (or row) c of n, at most one step outside the grid, and the shift of its members'
+// image: +length past the last, -length before the first.
+struct Wrapped {
+  int index;
+  double shift;
+};
+Wrapped wrapped(int c, int n, double length) {
+  if (c < 0) return {c + n, -length};
+  if (c >= n) return {c - n, length};
+  return {c, 0.0};
 }
 
 }  // namespace
 
 PeriodicCells::Neighbour PeriodicCells::neighbour(int cx, int cy) const {
-  const auto [x, wrap_x] = wrapped(cx, nx_);
-  const auto [y, wrap_y] = wrapped(cy, ny_);
-  return {y * nx_ + x, wrap_x, wrap_y};
+  const Wrapped x = wrapped(cx, nx_, lx_), y = wrapped(cy, ny_, ly_);
+  return {y.index * nx_ + x.index, x.shift, y.shift};
 }
 
-std::array<PeriodicCells::Neighbour, 9> PeriodicCells::neighbourhood(int cell) const {
-  const int cx = cell % nx_, cy = cell / nx_;
+std::array<PeriodicCells::Neighbour, 9> PeriodicCells::neighbourhood_of(int particle) const {
+  const int cx = column_[std::size_t(particle)], cy = row_[std::size_t(particle)];
   std::array<Neighbour, 9> around{};
   int k = 0;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -66,9 +67,9 @@ std::array<PeriodicCells::Neighbour, 9> PeriodicCells::neighbourhood(int cell) c
   return around;
 }
 
-std::array<PeriodicCells::Neighbour, 3> PeriodicCells::entering(int cell, int axis,
+std::array<PeriodicCells::Neighbour, 3> PeriodicCells::entering(int particle, int axis,
                                                                 int direction) const {
-  const int cx = cell % nx_, cy = cell / nx_;
+  const int cx = column_[std::size_t(particle)], cy = row_[std::size_t(particle)];
   std::array<Neighbour, 3> joined{};
   for (int k = -1; k <= 1; ++k) {
     const int x = axis == 0 ? cx + direction : cx + k;
@@ -78,24 +79,35 @@ std::array<PeriodicCells::Neighbour, 3> PeriodicCells::entering(int cell, int ax
   return joined;
 }
 
-int PeriodicCells::across(int cell, int axis, int direction, bool& wraps) const {
-  int cx = cell % nx_, cy = cell / nx_;
+bool PeriodicCells::step(int particle, int axis, int direction) {
+  const std::size_t p = std::size_t(particle);
+  int cx = column_[p], cy = row_[p];
   int& c = axis == 0 ? cx : cy;
   const int n = axis == 0 ? nx_ : ny_;
   c += direction;
-  wraps = c < 0 || c >= n;
-  c = (c + n) % n;
-  return cy * nx_ + cx;
+  const bool wraps = c < 0 || c >= n;
+  if (c < 0) c += n;
+  if (c >= n) c -= n;
+  remove(particle);
+  column_[p] = cx;
+  row_[p] = cy;
+  link(particle, cy * nx_ + cx);
+  return wraps;
 }
 
 void PeriodicCells::clear() {
   std::fill(first_.begin(), first_.end(), -1);
-  std::fill(cell_.begin(), cell_.end(), -1);
-  std::fill(next_.begin(), next_.end(), -1);
-  std::fill(previous_.begin(), previous_.end(), -1);
+  for (auto* per_particle : {&cell_, &column_, &row_, &next_, &previous_})
+    std::fill(per_particle->begin(), per_particle->end(), -1);
 }
 
 void PeriodicCells::insert(int particle, int cell) {
+  column_[std::size_t(particle)] = cell % nx_;
+  row_[std::size_t(particle)] = cell / nx_;
+  link(particle, cell);
+}
+
+void PeriodicCells::link(int particle, int cell) {
   const std::size_t p = std::size_t(particle);
   int& head = first_[std::size_t(cell)];
   cell_[p] = cell;
@@ -114,11 +126,6 @@ void PeriodicCells::remove(int particle) {
     first_[std::size_t(cell_[p])] = after;
   }
   if (after >= 0) previous_[std::size_t(after)] = before;
-}
-
-void PeriodicCells::move(int particle, int to) {
-  remove(particle);
-  insert(particle, to);
 }
 
 }  // namespace granvv::md

@@ -20,45 +20,50 @@ class PeriodicCells {
   double cell_width() const { return wy_; }
   // The cell of a position inside the box (clamped to the grid).
   int cell_at(double x, double y) const;
-  // Lower edges of a cell.
-  double x_low(int cell) const { return -0.5 * lx_ + (cell % nx_) * wx_; }
-  double y_low(int cell) const { return -0.5 * ly_ + (cell / nx_) * wy_; }
+  // Lower edges of a particle's cell.
+  double x_low(int particle) const { return -0.5 * lx_ + column_[std::size_t(particle)] * wx_; }
+  double y_low(int particle) const { return -0.5 * ly_ + row_[std::size_t(particle)] * wy_; }
   // A cell next to another, and the periodic image in which its members lie next to it: seen
-  // from the centre cell, a member at (x, y) is at (x + wrap_x Lx, y + wrap_y Ly). The image is
-  // the cell's, not the nearest one: with 3 cells along a side, neighbours in adjacent cells can
-  // be up to 2 cell widths = 2/3 of the box apart, farther than half the box, and the nearest
-  // image of such a pair is not the one in which they can touch.
+  // from the centre cell, a member at (x, y) is at (x + shift_x, y + shift_y), shift 0 or ±L.
+  // The image is the cell's, not the nearest one: with 3 cells along a side, neighbours in
+  // adjacent cells can be up to 2 cell widths = 2/3 of the box apart, farther than half the
+  // box, and the nearest image of such a pair is not the one in which they can touch.
   struct Neighbour {
     int cell;
-    int wrap_x, wrap_y;  // -1, 0 or +1
+    double shift_x, shift_y;
   };
-  // The nine cells around a cell (itself included), periodic.
-  std::array<Neighbour, 9> neighbourhood(int cell) const;
-  // The three cells that join the neighbourhood of `cell` when a particle has just entered it
+  // The nine cells around a particle's cell (itself included), periodic, row by row from
+  // below; from its column and row, without a division (every prediction asks for it).
+  std::array<Neighbour, 9> neighbourhood_of(int particle) const;
+  // The three cells that join the neighbourhood of a particle that has just entered its cell
   // along axis 0 (x) or 1 (y) in `direction`: the far row or column of its new neighbourhood.
-  std::array<Neighbour, 3> entering(int cell, int axis, int direction) const;
-  // The cell next to `cell` across its face: axis 0 (x) or 1 (y), direction +1 or -1; and
-  // whether that step wraps around the box (then the position moves by -direction L).
-  int across(int cell, int axis, int direction, bool& wraps) const;
+  std::array<Neighbour, 3> entering(int particle, int axis, int direction) const;
+  // Moves a particle to the cell next to its own across a face (axis 0 (x) or 1 (y), direction
+  // +1 or -1); true if that step wraps around the box (then its position moves by
+  // -direction L).
+  bool step(int particle, int axis, int direction);
 
   void clear();
   void insert(int particle, int cell);
-  void move(int particle, int to);
   int cell_of(int particle) const { return cell_[std::size_t(particle)]; }
-  // The members of a cell as a list: first(cell), then next(particle) until -1.
+  // The members of a cell as a list: first(cell), then next(particle) until -1; members() is
+  // the array behind next() for loops that walk many lists.
   int first(int cell) const { return first_[std::size_t(cell)]; }
   int next(int particle) const { return next_[std::size_t(particle)]; }
+  const int* members() const { return next_.data(); }
 
  private:
   // The cell at column cx, row cy of the periodic grid (each at most one step outside it).
   Neighbour neighbour(int cx, int cy) const;
+  // Adds a particle at the head of a cell's list (its column and row set by the caller).
+  void link(int particle, int cell);
   void remove(int particle);
   double lx_, ly_, wx_, wy_;
   int nx_, ny_;
   // Doubly linked lists of the members (-1 ends them): a few integers per cell and particle,
   // so that the grid stays in cache beside the particles.
   std::vector<int> first_;
-  std::vector<int> cell_, next_, previous_;  // per particle
+  std::vector<int> cell_, column_, row_, next_, previous_;  // per particle
 };
 
 }  // namespace granvv::md
