@@ -1,58 +1,161 @@
 #include "md_bridge/event_calendar.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace granvv::md {
+
+namespace {
+
+// Entries per bucket near the front of the calendar that the width aims at: fewer leave more
+// empty buckets to step over, more make every search for the earliest look at more entries.
+constexpr double kEntriesPerBucket = 1.0;
+// The width is tuned again when finding the earliest entry looked at more than this many
+// entries on average (the times have spread or gathered since the last tuning).
+constexpr std::uint64_t kLookedAtPerFind = 8;
+// Ring buckets per entry.
+constexpr double kRingPerEntry = 4.0;
+
+}  // namespace
 
 void EventCalendar::reset(int particles) {
   reset(std::vector<double>(std::size_t(std::max(particles, 0)), kNoEvent));
 }
 
-// Entrant k of a match leads the subtree of the k-th quarter of its particles, so on equal
-// times the lower entrant holds the lower particle: a strict comparison of times alone breaks
-// ties by the lowest particle. The choice is made on indices, without branches: the outcome
-// of comparing event times is random, and a mispredicted branch per comparison cost more than
-// the comparisons themselves.
-EventCalendar::Leader EventCalendar::Match::winner() const {
-  const int a = int(entrant[1].t < entrant[0].t);
-  const int b = 2 + int(entrant[3].t < entrant[2].t);
-  return entrant[a + (b - a) * int(entrant[b].t < entrant[a].t)];
-}
-
 void EventCalendar::reset(const std::vector<double>& times) {
-  particles_ = times.size();
-  // Internal nodes 1 + 4 + ... + 4^(levels - 1) above 4^levels leaves.
-  std::size_t leaves = 4, internal = 1;
-  while (leaves < particles_) internal += leaves, leaves *= 4;
-  first_leaf_ = internal;
-  matches_.assign(internal, Match{});
-  for (std::size_t k = 0; k < leaves; ++k) {
-    const std::size_t node = first_leaf_ + k;
-    matches_[(node - 1) / 4].entrant[(node - 1) % 4] = {k < particles_ ? times[k] : kNoEvent,
-                                                        int(k)};
-  }
-  for (std::size_t node = internal; node-- > 1;)
-    matches_[(node - 1) / 4].entrant[(node - 1) % 4] = matches_[node].winner();
-  root_ = matches_[0].winner();
+  time_ = times;
+  bucket_.assign(times.size(), kBeyond);
+  after_.assign(times.size(), -1);
+  before_.assign(times.size(), -1);
+  tune();
 }
 
-double EventCalendar::time(int i) const {
-  const std::size_t node = first_leaf_ + std::size_t(i);
-  return matches_[(node - 1) / 4].entrant[(node - 1) % 4].t;
+std::int64_t EventCalendar::bucket_at(double t) const {
+  if (!(t < kNoEvent)) return kBeyond;
+  // Truncated, and clamped far inside the range of the integer: both monotone, so the order
+  // of the buckets stays that of the times.
+  constexpr double kFar = 4e18;
+  return std::int64_t(std::clamp(t / width_, -kFar, kFar));
+}
+
+std::size_t EventCalendar::list_of(std::int64_t bucket) const {
+  if (bucket == kBeyond || bucket - base_ >= std::int64_t(ring_)) return ring_;
+  return std::size_t(bucket) & (ring_ - 1);
+}
+
+void EventCalendar::link(int i) {
+  const std::size_t e = std::size_t(i);
+  const std::int64_t bucket = bucket_at(time_[e]);
+  const std::size_t list = list_of(bucket);
+  bucket_[e] = list == ring_ ? kBeyond : bucket;
+  int& head = head_[list];
+  before_[e] = -1;
+  after_[e] = head;
+  if (head >= 0) before_[std::size_t(head)] = i;
+  head = i;
+}
+
+void EventCalendar::unlink(int i) {
+  const std::size_t e = std::size_t(i);
+  const int before = before_[e], after = after_[e];
+  if (before >= 0)
+    after_[std::size_t(before)] = after;
+  else
+    head_[list_of(bucket_[e])] = after;
+  if (after >= 0) before_[std::size_t(after)] = before;
+}
+
+void EventCalendar::tune() {
+  double earliest = kNoEvent, sum = 0.0;
+  std::size_t finite = 0;
+  for (const double t : time_) {
+    if (!(t < kNoEvent)) continue;
+    earliest = std::min(earliest, t);
+    sum += t, ++finite;
+  }
+  // The mean time to the entries from the earliest, tau: near the front about finite / tau
+  // entries per unit time.
+  const double tau = finite > 0 ? sum / double(finite) - earliest : 0.0;
+  width_ = finite > 1 && tau > 0.0 && std::isfinite(tau) ? kEntriesPerBucket * tau / double(finite)
+                                                         : 1.0;
+  // A ring of at least kRingPerEntry buckets per entry spans about 2 kRingPerEntry tau, so
+  // that it empties, and every entry is placed again, only that often.
+  ring_ = 1;
+  while (double(ring_) < kRingPerEntry * double(finite)) ring_ *= 2;
+  looked_at_ = found_ = 0;
+  place_all(finite > 0 ? bucket_at(earliest) : 0);
+}
+
+void EventCalendar::place_all(std::int64_t base) {
+  base_ = current_ = base;
+  head_.assign(ring_ + 1, -1);
+  for (std::size_t i = time_.size(); i-- > 0;) link(int(i));
+  leader_ = -1;
 }
 
 void EventCalendar::set(int i, double t) {
-  std::size_t node = first_leaf_ + std::size_t(i);
-  matches_[(node - 1) / 4].entrant[(node - 1) % 4].t = t;
-  // Replays the matches up the path; a match whose winner and time stay the same leaves every
-  // match above it unchanged.
-  for (node = (node - 1) / 4; node >= 1; node = (node - 1) / 4) {
-    const Leader won = matches_[node].winner();
-    Leader& held = matches_[(node - 1) / 4].entrant[(node - 1) % 4];
-    if (won.i == held.i && won.t == held.t) return;
-    held = won;
+  unlink(i);
+  time_[std::size_t(i)] = t;
+  const std::int64_t bucket = bucket_at(t);
+  if (bucket < base_) {  // before the ring (never in the engine: events come after now)
+    place_all(bucket);
+    return;
   }
-  root_ = matches_[0].winner();
+  link(i);
+  current_ = std::min(current_, bucket);
+  if (leader_ == i) {
+    leader_ = -1;
+  } else if (leader_ >= 0) {
+    const double lead = time_[std::size_t(leader_)];
+    if (t < lead || (t == lead && i < leader_)) leader_ = i;
+  }
+}
+
+void EventCalendar::find_leader() {
+  const std::int64_t end = base_ + std::int64_t(ring_);
+  while (current_ < end && head_[std::size_t(current_) & (ring_ - 1)] < 0) ++current_;
+  if (current_ == end) {
+    // The ring is empty: every entry is in the overflow list. The next ring starts at the
+    // earliest of them; with none finite, the lowest particle leads (at kNoEvent).
+    double earliest = kNoEvent;
+    int lowest = -1;
+    for (int j = head_[ring_]; j >= 0; j = after_[std::size_t(j)]) {
+      earliest = std::min(earliest, time_[std::size_t(j)]);
+      lowest = lowest < 0 ? j : std::min(lowest, j);
+    }
+    if (earliest == kNoEvent) {
+      leader_ = lowest;
+      return;
+    }
+    place_all(bucket_at(earliest));
+    find_leader();
+    return;
+  }
+  int best = -1;
+  for (int j = head_[std::size_t(current_) & (ring_ - 1)]; j >= 0; j = after_[std::size_t(j)]) {
+    const double tj = time_[std::size_t(j)];
+    if (best < 0 || tj < time_[std::size_t(best)] || (tj == time_[std::size_t(best)] && j < best))
+      best = j;
+    ++looked_at_;
+  }
+  leader_ = best;
+  ++found_;
+  // Amortised: a tuning costs about one pass over the entries.
+  if (found_ >= std::max<std::uint64_t>(1024, time_.size() / 4) &&
+      looked_at_ > kLookedAtPerFind * found_) {
+    tune();
+    find_leader();
+  }
+}
+
+int EventCalendar::next() {
+  if (leader_ < 0) find_leader();
+  return std::max(leader_, 0);
+}
+
+double EventCalendar::next_time() {
+  if (leader_ < 0) find_leader();
+  return leader_ < 0 ? kNoEvent : time_[std::size_t(leader_)];
 }
 
 }  // namespace granvv::md

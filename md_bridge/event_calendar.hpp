@@ -1,13 +1,20 @@
 #pragma once
 // The event calendar of an event-driven particle engine: the time of every particle's next event
 // (a collision, or leaving its cell; what it is, the engine keeps), one entry per particle,
-// replaced in place when the particle's prediction changes, and the earliest of them. A complete
-// tournament tree over the particles holds the earliest time of every subtree, so that replacing
-// one entry replays only the matches on its path to the root (no allocation, no stale entries,
-// Marin, Risso & Cordero, J. Comput. Phys. 109, 306 (1993)). Each match is among four, whose
-// entries share one cache line: log4 N dependent loads per update. A collision entry is checked
-// when it comes due, by the partner's collision count (Lubachevsky, J. Comput. Phys. 94, 255
-// (1991); Rapaport, The Art of Molecular Dynamics Simulation, ch. 14).
+// replaced in place when the particle's prediction changes, and the earliest of them.
+//
+// A bucket queue in the manner of Paul, J. Comput. Phys. 221, 615 (2007) (after Brown's
+// calendar queue, Commun. ACM 31, 1220 (1988)): time is cut into buckets of a fixed width, a
+// ring of them covers the near future, and each particle's entry sits in the doubly linked list
+// of its bucket (or of an overflow list beyond the ring). Replacing an entry is an unlink and a
+// link, O(1); the earliest entry is the smallest of the first non-empty bucket, found by looking
+// at its few members. The width is tuned to about two entries per bucket near the front from the
+// times themselves (at every reset, and again when the lists grow long), so the cost does not
+// grow with the number of particles as a tree's log N does. The order is exact: the earliest
+// time, ties to the lowest particle, whatever the width. A collision entry is checked when it
+// comes due, by the partner's collision count (Lubachevsky, J. Comput. Phys. 94, 255 (1991);
+// Rapaport, The Art of Molecular Dynamics Simulation, ch. 14).
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -23,29 +30,36 @@ class EventCalendar {
   void reset(const std::vector<double>& times);
   // Replaces the time of the next event of particle i.
   void set(int i, double t);
-  double time(int i) const;
+  double time(int i) const { return time_[std::size_t(i)]; }
   // The particle whose event is the earliest (ties: the lowest index, the same on every
   // platform), and its time (kNoEvent when no particle has an event).
-  int next() const { return root_.i; }
-  double next_time() const { return root_.t; }
+  int next();
+  double next_time();
 
  private:
-  struct Leader {
-    double t;
-    int i;
-  };
-  // The four children of one node, in one cache line.
-  struct alignas(64) Match {
-    Leader entrant[4];
-    Leader winner() const;  // the earliest; ties: the lowest particle
-  };
-  // Node k's children are nodes 4k + 1 .. 4k + 4, held in matches_[k]; node 0 is the root, the
-  // particles are the nodes from first_leaf_ on. Node k >= 1 is entrant (k - 1) % 4 of
-  // matches_[(k - 1) / 4].
-  std::size_t first_leaf_ = 0;
-  std::size_t particles_ = 0;
-  std::vector<Match> matches_;
-  Leader root_{kNoEvent, 0};
+  static constexpr std::int64_t kBeyond = std::numeric_limits<std::int64_t>::max();
+  std::int64_t bucket_at(double t) const;
+  // The list an entry of bucket k is in: its ring slot, or the overflow list (index ring_).
+  std::size_t list_of(std::int64_t bucket) const;
+  void link(int i);
+  void unlink(int i);
+  // Bucket width and ring from the present times; every entry placed again.
+  void tune();
+  // The ring starting at bucket `base`, and every entry placed in it or beyond it.
+  void place_all(std::int64_t base);
+  void find_leader();
+
+  std::vector<double> time_;
+  std::vector<std::int64_t> bucket_;  // absolute bucket of each entry, kBeyond in overflow
+  std::vector<int> after_, before_;   // list links, -1 at the ends
+  std::vector<int> head_;             // first entry of each ring slot, then of the overflow list
+  std::size_t ring_ = 1;              // slots in the ring (a power of 2)
+  double width_ = 1.0;
+  std::int64_t base_ = 0;     // the ring holds buckets base_ .. base_ + ring_ - 1
+  std::int64_t current_ = 0;  // buckets base_ .. current_ - 1 are empty
+  int leader_ = -1;           // the earliest entry, -1 until found again
+  // Entries looked at to find leaders since the last tuning, and how many leaders.
+  std::uint64_t looked_at_ = 0, found_ = 0;
 };
 
 }  // namespace granvv::md

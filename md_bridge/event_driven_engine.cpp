@@ -22,8 +22,9 @@ constexpr double kDisksPerCell = 1.0;
 constexpr double kCellMargin = 1e-9;
 // After this many events per disk the disks are renumbered in the order of their cells, so
 // that neighbours stay near each other in memory as the gas mixes (a disk crosses a cell about
-// every event).
-constexpr double kEventsPerReorder = 1.0;
+// every event); the renumbering also tunes the calendar's buckets to the present event times.
+// 2 was faster than 1 (by 3-4 %) and as fast as 4 (docs/md_benchmarks.md §4).
+constexpr double kEventsPerReorder = 2.0;
 // Cell crossings allowed per collision of the md.max_collision_rate budget: a dilute gas makes
 // about 4 events per collision at phi = 0.05 and about 30 at phi = 0.01 (mean free path over
 // cell size), so a segment beyond this many events is a loop of crossings, not a gas.

@@ -36,7 +36,9 @@ TEST(EventCalendar, RootIsTheEarliestEventWithTiesToTheLowestParticle) {
     for (int k = 0; k < 20 * n + 100; ++k) {
       const auto [i, t] = earliest(times);
       ASSERT_EQ(calendar.next_time(), t) << "n = " << n << ", replacement " << k;
-      if (t != kNoEvent) ASSERT_EQ(calendar.next(), i) << "n = " << n << ", replacement " << k;
+      if (t != kNoEvent) {
+        ASSERT_EQ(calendar.next(), i) << "n = " << n << ", replacement " << k;
+      }
       // Replace the leader half the time (as the engine does after every event), else any one.
       const int j = k % 2 == 0 ? calendar.next() : particle(random);
       times[std::size_t(j)] = draw();
