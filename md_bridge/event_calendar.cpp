@@ -25,17 +25,15 @@ void EventCalendar::reset(int particles) {
 void EventCalendar::reset(const std::vector<double>& times) {
   time_ = times;
   bucket_.assign(times.size(), kBeyond);
-  after_.assign(times.size(), -1);
-  before_.assign(times.size(), -1);
   tune();
 }
 
 std::int64_t EventCalendar::bucket_at(double t) const {
   if (!(t < kNoEvent)) return kBeyond;
-  // Truncated, and clamped far inside the range of the integer: both monotone, so the order
-  // of the buckets stays that of the times.
+  // Scaled by a positive number, truncated, and clamped far inside the range of the integer:
+  // each monotone, so the order of the buckets stays that of the times.
   constexpr double kFar = 4e18;
-  return std::int64_t(std::clamp(t / width_, -kFar, kFar));
+  return std::int64_t(std::clamp(t * per_width_, -kFar, kFar));
 }
 
 std::size_t EventCalendar::list_of(std::int64_t bucket) const {
@@ -43,26 +41,10 @@ std::size_t EventCalendar::list_of(std::int64_t bucket) const {
   return std::size_t(bucket) & (ring_ - 1);
 }
 
-void EventCalendar::link(int i) {
-  const std::size_t e = std::size_t(i);
-  const std::int64_t bucket = bucket_at(time_[e]);
+void EventCalendar::link(int i, std::int64_t bucket) {
   const std::size_t list = list_of(bucket);
-  bucket_[e] = list == ring_ ? kBeyond : bucket;
-  int& head = head_[list];
-  before_[e] = -1;
-  after_[e] = head;
-  if (head >= 0) before_[std::size_t(head)] = i;
-  head = i;
-}
-
-void EventCalendar::unlink(int i) {
-  const std::size_t e = std::size_t(i);
-  const int before = before_[e], after = after_[e];
-  if (before >= 0)
-    after_[std::size_t(before)] = after;
-  else
-    head_[list_of(bucket_[e])] = after;
-  if (after >= 0) before_[std::size_t(after)] = before;
+  bucket_[std::size_t(i)] = list == ring_ ? kBeyond : bucket;
+  lists_.push_front(list, i);
 }
 
 void EventCalendar::tune() {
@@ -76,10 +58,12 @@ void EventCalendar::tune() {
   // The mean time to the entries from the earliest, tau: near the front about finite / tau
   // entries per unit time.
   const double tau = finite > 0 ? sum / double(finite) - earliest : 0.0;
-  width_ = finite > 1 && tau > 0.0 && std::isfinite(tau) ? kEntriesPerBucket * tau / double(finite)
-                                                         : 1.0;
-  // A ring of at least kRingPerEntry buckets per entry spans about 2 kRingPerEntry tau, so
-  // that it empties, and every entry is placed again, only that often.
+  const double width = finite > 1 && tau > 0.0 && std::isfinite(tau)
+                           ? kEntriesPerBucket * tau / double(finite)
+                           : 1.0;
+  per_width_ = 1.0 / width;
+  // A ring of at least kRingPerEntry buckets per entry spans about kEntriesPerBucket kRingPerEntry
+  // tau, so that it empties, and every entry is placed again, only that often.
   ring_ = 1;
   while (double(ring_) < kRingPerEntry * double(finite)) ring_ *= 2;
   looked_at_ = found_ = 0;
@@ -88,20 +72,20 @@ void EventCalendar::tune() {
 
 void EventCalendar::place_all(std::int64_t base) {
   base_ = current_ = base;
-  head_.assign(ring_ + 1, -1);
-  for (std::size_t i = time_.size(); i-- > 0;) link(int(i));
+  lists_.reset(ring_ + 1, time_.size());
+  for (std::size_t i = time_.size(); i-- > 0;) link(int(i), bucket_at(time_[i]));
   leader_ = -1;
 }
 
 void EventCalendar::set(int i, double t) {
-  unlink(i);
+  lists_.remove(list_of(bucket_[std::size_t(i)]), i);
   time_[std::size_t(i)] = t;
   const std::int64_t bucket = bucket_at(t);
   if (bucket < base_) {  // before the ring (never in the engine: events come after now)
     place_all(bucket);
     return;
   }
-  link(i);
+  link(i, bucket);
   current_ = std::min(current_, bucket);
   if (leader_ == i) {
     leader_ = -1;
@@ -113,13 +97,13 @@ void EventCalendar::set(int i, double t) {
 
 void EventCalendar::find_leader() {
   const std::int64_t end = base_ + std::int64_t(ring_);
-  while (current_ < end && head_[std::size_t(current_) & (ring_ - 1)] < 0) ++current_;
+  while (current_ < end && lists_.first(std::size_t(current_) & (ring_ - 1)) < 0) ++current_;
   if (current_ == end) {
     // The ring is empty: every entry is in the overflow list. The next ring starts at the
     // earliest of them; with none finite, the lowest particle leads (at kNoEvent).
     double earliest = kNoEvent;
     int lowest = -1;
-    for (int j = head_[ring_]; j >= 0; j = after_[std::size_t(j)]) {
+    for (int j = lists_.first(ring_); j >= 0; j = lists_.next(j)) {
       earliest = std::min(earliest, time_[std::size_t(j)]);
       lowest = lowest < 0 ? j : std::min(lowest, j);
     }
@@ -132,7 +116,7 @@ void EventCalendar::find_leader() {
     return;
   }
   int best = -1;
-  for (int j = head_[std::size_t(current_) & (ring_ - 1)]; j >= 0; j = after_[std::size_t(j)]) {
+  for (int j = lists_.first(std::size_t(current_) & (ring_ - 1)); j >= 0; j = lists_.next(j)) {
     const double tj = time_[std::size_t(j)];
     if (best < 0 || tj < time_[std::size_t(best)] || (tj == time_[std::size_t(best)] && j < best))
       best = j;

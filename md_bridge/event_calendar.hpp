@@ -18,6 +18,8 @@
 #include <limits>
 #include <vector>
 
+#include "md_bridge/linked_lists.hpp"
+
 namespace granvv::md {
 
 constexpr double kNoEvent = std::numeric_limits<double>::infinity();
@@ -41,8 +43,8 @@ class EventCalendar {
   std::int64_t bucket_at(double t) const;
   // The list an entry of bucket k is in: its ring slot, or the overflow list (index ring_).
   std::size_t list_of(std::int64_t bucket) const;
-  void link(int i);
-  void unlink(int i);
+  // Puts entry i in the list of its bucket.
+  void link(int i, std::int64_t bucket);
   // Bucket width and ring from the present times; every entry placed again.
   void tune();
   // The ring starting at bucket `base`, and every entry placed in it or beyond it.
@@ -51,13 +53,12 @@ class EventCalendar {
 
   std::vector<double> time_;
   std::vector<std::int64_t> bucket_;  // absolute bucket of each entry, kBeyond in overflow
-  std::vector<int> after_, before_;   // list links, -1 at the ends
-  std::vector<int> head_;             // first entry of each ring slot, then of the overflow list
+  LinkedLists lists_;                 // one per ring slot, then the overflow list
   std::size_t ring_ = 1;              // slots in the ring (a power of 2)
-  double width_ = 1.0;
-  std::int64_t base_ = 0;     // the ring holds buckets base_ .. base_ + ring_ - 1
-  std::int64_t current_ = 0;  // buckets base_ .. current_ - 1 are empty
-  int leader_ = -1;           // the earliest entry, -1 until found again
+  double per_width_ = 1.0;            // 1 / the bucket width
+  std::int64_t base_ = 0;             // the ring holds buckets base_ .. base_ + ring_ - 1
+  std::int64_t current_ = 0;          // buckets base_ .. current_ - 1 are empty
+  int leader_ = -1;                   // the earliest entry, -1 until found again
   // Entries looked at to find leaders since the last tuning, and how many leaders.
   std::uint64_t looked_at_ = 0, found_ = 0;
 };

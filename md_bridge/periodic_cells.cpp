@@ -25,9 +25,9 @@ PeriodicCells::PeriodicCells(double box_length, double box_width, double min_wid
   }
   wx_ = lx_ / nx_;
   wy_ = ly_ / ny_;
-  first_.assign(std::size_t(nx_) * std::size_t(ny_), -1);
-  for (auto* per_particle : {&cell_, &column_, &row_, &next_, &previous_})
+  for (auto* per_particle : {&cell_, &column_, &row_})
     per_particle->assign(std::size_t(particles), -1);
+  members_.reset(std::size_t(nx_) * std::size_t(ny_), std::size_t(particles));
 }
 
 int PeriodicCells::cell_at(double x, double y) const {
@@ -96,9 +96,9 @@ bool PeriodicCells::step(int particle, int axis, int direction) {
 }
 
 void PeriodicCells::clear() {
-  std::fill(first_.begin(), first_.end(), -1);
-  for (auto* per_particle : {&cell_, &column_, &row_, &next_, &previous_})
+  for (auto* per_particle : {&cell_, &column_, &row_})
     std::fill(per_particle->begin(), per_particle->end(), -1);
+  members_.reset(std::size_t(nx_) * std::size_t(ny_), cell_.size());
 }
 
 void PeriodicCells::insert(int particle, int cell) {
@@ -108,24 +108,12 @@ void PeriodicCells::insert(int particle, int cell) {
 }
 
 void PeriodicCells::link(int particle, int cell) {
-  const std::size_t p = std::size_t(particle);
-  int& head = first_[std::size_t(cell)];
-  cell_[p] = cell;
-  previous_[p] = -1;
-  next_[p] = head;
-  if (head >= 0) previous_[std::size_t(head)] = particle;
-  head = particle;
+  cell_[std::size_t(particle)] = cell;
+  members_.push_front(std::size_t(cell), particle);
 }
 
 void PeriodicCells::remove(int particle) {
-  const std::size_t p = std::size_t(particle);
-  const int before = previous_[p], after = next_[p];
-  if (before >= 0) {
-    next_[std::size_t(before)] = after;
-  } else {
-    first_[std::size_t(cell_[p])] = after;
-  }
-  if (after >= 0) previous_[std::size_t(after)] = before;
+  members_.remove(std::size_t(cell_[std::size_t(particle)]), particle);
 }
 
 }  // namespace granvv::md

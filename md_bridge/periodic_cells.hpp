@@ -6,6 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "md_bridge/linked_lists.hpp"
+
 namespace granvv::md {
 
 class PeriodicCells {
@@ -48,9 +50,9 @@ class PeriodicCells {
   int cell_of(int particle) const { return cell_[std::size_t(particle)]; }
   // The members of a cell as a list: first(cell), then next(particle) until -1; members() is
   // the array behind next() for loops that walk many lists.
-  int first(int cell) const { return first_[std::size_t(cell)]; }
-  int next(int particle) const { return next_[std::size_t(particle)]; }
-  const int* members() const { return next_.data(); }
+  int first(int cell) const { return members_.first(std::size_t(cell)); }
+  int next(int particle) const { return members_.next(particle); }
+  const int* members() const { return members_.links(); }
 
  private:
   // The cell at column cx, row cy of the periodic grid (each at most one step outside it).
@@ -62,8 +64,8 @@ class PeriodicCells {
   int nx_, ny_;
   // Doubly linked lists of the members (-1 ends them): a few integers per cell and particle,
   // so that the grid stays in cache beside the particles.
-  std::vector<int> first_;
-  std::vector<int> cell_, column_, row_, next_, previous_;  // per particle
+  LinkedLists members_;
+  std::vector<int> cell_, column_, row_;  // per particle
 };
 
 }  // namespace granvv::md
