@@ -181,8 +181,8 @@ void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour
     for (int j = cells_->first(cell.cell); j >= 0; j = next[j]) {
       if (k == capacity) {  // a dense cluster has no fixed bound on candidates
         capacity = std::max<std::size_t>(64, 2 * k);
-        for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy, &c.t}) column->resize(capacity);
-        c.disk.resize(capacity);
+        for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy}) column->resize(capacity);
+        for (auto* column : {&c.disk, &c.touching}) column->resize(capacity);
         dx = c.dx.data(), dy = c.dy.data(), dvx = c.dvx.data(), dvy = c.dvy.data();
         disk = c.disk.data();
       }
@@ -199,8 +199,9 @@ void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour
   c.size = k;
 }
 
-// The first of the earliest contacts, chosen without branches (whether a candidate is sooner is
-// as unpredictable as whether it approaches).
+// The first of the earliest contacts. Most candidates recede or miss, so those that touch are
+// listed first (without branches: whether one touches is a coin toss) and only their few roots,
+// with a division and a square root each, are computed and compared.
 void EventDrivenEngine::choose_soonest(int i, double now) {
   Candidates& c = candidates_;
   const std::size_t n = c.size;
@@ -208,42 +209,50 @@ void EventDrivenEngine::choose_soonest(int i, double now) {
   const double* dy = c.dy.data();
   const double* dvx = c.dvx.data();
   const double* dvy = c.dvy.data();
-  double* t = c.t.data();
-  for (std::size_t k = 0; k < n; ++k) t[k] = contact_time(dx[k], dy[k], dvx[k], dvy[k], kSigma);
-  Soonest& s = soonest_[std::size_t(i)];
-  double soonest = s.t;
-  std::ptrdiff_t found = -1;
+  int* touching = c.touching.data();
+  std::size_t m = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double at = now + t[k];
-    const bool sooner = at < soonest;
-    soonest = sooner ? at : soonest;
-    found = sooner ? std::ptrdiff_t(k) : found;
+    touching[m] = int(k);
+    m += contact_quadratic(dx[k], dy[k], dvx[k], dvy[k], kSigma).touches() ? 1 : 0;
+  }
+  Soonest& s = soonest_[std::size_t(i)];
+  int found = -1;
+  for (std::size_t h = 0; h < m; ++h) {
+    const std::size_t k = std::size_t(touching[h]);
+    const double at = now + contact_quadratic(dx[k], dy[k], dvx[k], dvy[k], kSigma).time();
+    if (at < s.t) s.t = at, found = int(k);
   }
   if (found >= 0) {
-    s.t = soonest;
     s.partner = c.disk[std::size_t(found)];
     s.partner_count = count_[std::size_t(s.partner)];
   }
   c.size = 0;
 }
 
-// The earlier of its soonest collision and leaving its cell.
+namespace {
+
+// Time until a coordinate x moving at v leaves [low, low + width] (kNever at rest). Without
+// branches: the sign of v is a coin toss.
+double exit_time(double x, double v, double low, double width) {
+  const double edge = v > 0.0 ? low + width : low;
+  const double t = std::max(0.0, (edge - x) / v);  // inf or NaN at rest: not taken
+  return v != 0.0 ? t : kNever;
+}
+
+}  // namespace
+
+// The earliest of its soonest collision and leaving its cell across either face (on equal
+// times: the collision, then x).
 void EventDrivenEngine::schedule(int i, double now) {
   const Disk& a = disks_[std::size_t(i)];
   double soonest = soonest_[std::size_t(i)].t;
-  std::int8_t event = kCollision;
-  const double x_low = cells_->x_low(i), y_low = cells_->y_low(i);
-  if (a.vx != 0.0) {
-    const double edge = a.vx > 0.0 ? x_low + cells_->cell_length() : x_low;
-    const double t = now + std::max(0.0, (edge - x_at(a, now)) / a.vx);
-    if (t < soonest) soonest = t, event = 0;
-  }
-  if (a.vy != 0.0) {
-    const double edge = a.vy > 0.0 ? y_low + cells_->cell_width() : y_low;
-    const double t = now + std::max(0.0, (edge - y_at(a, now)) / a.vy);
-    if (t < soonest) soonest = t, event = 1;
-  }
-  event_[std::size_t(i)] = event;
+  const double t_x = now + exit_time(x_at(a, now), a.vx, cells_->x_low(i), cells_->cell_length());
+  const double t_y = now + exit_time(y_at(a, now), a.vy, cells_->y_low(i), cells_->cell_width());
+  const bool x_first = t_x < soonest;
+  soonest = x_first ? t_x : soonest;
+  const bool y_first = t_y < soonest;
+  soonest = y_first ? t_y : soonest;
+  event_[std::size_t(i)] = y_first ? std::int8_t(1) : x_first ? std::int8_t(0) : kCollision;
   calendar_.set(i, soonest);  // never if at rest and alone: others will find it
 }
 

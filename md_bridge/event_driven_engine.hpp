@@ -163,8 +163,9 @@ class EventDrivenEngine final : public ParticleEngine {
   // computed several at a time (SIMD); in a dilute gas whether a candidate approaches is a coin
   // toss that a branch per candidate would mispredict half the time.
   struct Candidates {
-    std::vector<double> dx, dy, dvx, dvy, t;
+    std::vector<double> dx, dy, dvx, dvy;
     std::vector<int> disk;
+    std::vector<int> touching;  // choose_soonest's list of the candidates that touch
     std::size_t size = 0;
   };
   Candidates candidates_;

@@ -10,23 +10,35 @@ namespace granvv::md {
 
 constexpr double kNever = std::numeric_limits<double>::infinity();
 
-// Time from now until two disks with relative position (dx, dy) and relative velocity
-// (dvx, dvy) (of the first with respect to the second, minimum image) touch, or kNever if
-// they are not approaching or miss. A pair that already overlaps (round-off) while
-// approaching touches now (0), so that round-off can never let disks pass through each other.
-// Inline and without branches: it is the innermost loop of the engine (every candidate pair of
-// every prediction), and whether a candidate approaches is a coin toss that a branch would
-// mispredict half the time. A disk paired with itself (d = 0, dv = 0) never touches.
-inline double contact_time(double dx, double dy, double dvx, double dvy, double sigma) {
-  const double b = dx * dvx + dy * dvy;  // r . v < 0 when approaching
+// Two disks with relative position (dx, dy) and relative velocity (dvx, dvy) (of the first with
+// respect to the second, minimum image) touch when v2 t^2 + 2 b t + gap = 0, b = r . v,
+// gap = |r|^2 - sigma^2, v2 = |v|^2.
+struct ContactQuadratic {
+  double b, gap, v2, discriminant;
+  // Approaching (b < 0) and not missing (a real root). Positive discriminant whenever gap <= 0
+  // and b < 0 (b^2 > 0 >= v2 gap): a pair that already overlaps (round-off) while approaching
+  // touches, so that round-off can never let disks pass through each other.
+  bool touches() const { return b < 0.0 && discriminant > 0.0; }
+  // The smaller root in the form without cancellation; 0 for an overlap (gap <= 0). Meaningful
+  // only if touches().
+  double time() const { return std::max(gap, 0.0) / (std::sqrt(std::max(discriminant, 0.0)) - b); }
+};
+
+inline ContactQuadratic contact_quadratic(double dx, double dy, double dvx, double dvy,
+                                          double sigma) {
+  const double b = dx * dvx + dy * dvy;
   const double gap = dx * dx + dy * dy - sigma * sigma;
   const double v2 = dvx * dvx + dvy * dvy;
-  // Positive whenever gap <= 0 and b < 0 (b^2 > 0 >= v2 gap).
-  const double discriminant = b * b - v2 * gap;
-  // The smaller root of v2 t^2 + 2 b t + gap = 0 in the form without cancellation; 0 for an
-  // overlap (gap <= 0).
-  const double root = std::max(gap, 0.0) / (std::sqrt(std::max(discriminant, 0.0)) - b);
-  return b < 0.0 && discriminant > 0.0 ? root : kNever;
+  return {b, gap, v2, b * b - v2 * gap};
+}
+
+// Time from now until the two disks touch, or kNever if they are not approaching or miss.
+// Without branches (whether a pair approaches is a coin toss that a branch would mispredict half
+// the time). A disk paired with itself (r = 0, v = 0) never touches.
+inline double contact_time(double dx, double dy, double dvx, double dvy, double sigma) {
+  const ContactQuadratic q = contact_quadratic(dx, dy, dvx, dvy, sigma);
+  const double root = q.time();
+  return q.touches() ? root : kNever;
 }
 
 // Restitution that goes to 1 at vanishing impact speed, the rule of Bizon, Shattuck, Swift,
