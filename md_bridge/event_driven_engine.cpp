@@ -1,6 +1,7 @@
 #include "md_bridge/event_driven_engine.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -176,9 +177,14 @@ void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour
   std::size_t k = c.size, capacity = c.disk.size();
   double *dx = c.dx.data(), *dy = c.dy.data(), *dvx = c.dvx.data(), *dvy = c.dvy.data();
   int* disk = c.disk.data();
+  // The cells' first members, all looked up and their records fetched before the walk, whose
+  // end of each list is a mispredicted branch that would otherwise hold the next lookup back.
+  std::array<int, 9> heads{};
+  for (int m = 0; m < count; ++m) heads[std::size_t(m)] = cells_->first(cells[m].cell);
+  for (int m = 0; m < count; ++m) __builtin_prefetch(&disks[std::max(heads[std::size_t(m)], 0)]);
   for (int m = 0; m < count; ++m) {
     const PeriodicCells::Neighbour& cell = cells[m];
-    for (int j = cells_->first(cell.cell); j >= 0; j = next[j]) {
+    for (int j = heads[std::size_t(m)]; j >= 0; j = next[j]) {
       if (k == capacity) {  // a dense cluster has no fixed bound on candidates
         capacity = std::max<std::size_t>(64, 2 * k);
         for (auto* column : {&c.dx, &c.dy, &c.dvx, &c.dvy}) column->resize(capacity);
