@@ -222,13 +222,17 @@ void EventDrivenEngine::choose_soonest(int i, double now) {
     m += contact_quadratic(dx[k], dy[k], dvx[k], dvy[k], kSigma).touches() ? 1 : 0;
   }
   Soonest& s = soonest_[std::size_t(i)];
+  double soonest = s.t;
   int found = -1;
   for (std::size_t h = 0; h < m; ++h) {
-    const std::size_t k = std::size_t(touching[h]);
-    const double at = now + contact_quadratic(dx[k], dy[k], dvx[k], dvy[k], kSigma).time();
-    if (at < s.t) s.t = at, found = int(k);
+    const int k = touching[h];
+    const std::size_t u = std::size_t(k);
+    const double at = now + contact_quadratic(dx[u], dy[u], dvx[u], dvy[u], kSigma).time();
+    found = at < soonest ? k : found;  // the first of equal times
+    soonest = std::min(soonest, at);
   }
   if (found >= 0) {
+    s.t = soonest;
     s.partner = c.disk[std::size_t(found)];
     s.partner_count = count_[std::size_t(s.partner)];
   }
@@ -240,8 +244,8 @@ namespace {
 // Time until a coordinate x moving at v leaves [low, low + width] (kNever at rest). Without
 // branches: the sign of v is a coin toss.
 double exit_time(double x, double v, double low, double width) {
-  const double edge = v > 0.0 ? low + width : low;
-  const double t = std::max(0.0, (edge - x) / v);  // inf or NaN at rest: not taken
+  const double edge = low + width * double(v > 0.0);  // arithmetic, not a select: no branch
+  const double t = std::max(0.0, (edge - x) / v);     // inf or NaN at rest: not taken
   return v != 0.0 ? t : kNever;
 }
 
@@ -254,11 +258,13 @@ void EventDrivenEngine::schedule(int i, double now) {
   double soonest = soonest_[std::size_t(i)].t;
   const double t_x = now + exit_time(x_at(a, now), a.vx, cells_->x_low(i), cells_->cell_length());
   const double t_y = now + exit_time(y_at(a, now), a.vy, cells_->y_low(i), cells_->cell_width());
-  const bool x_first = t_x < soonest;
-  soonest = x_first ? t_x : soonest;
-  const bool y_first = t_y < soonest;
-  soonest = y_first ? t_y : soonest;
-  event_[std::size_t(i)] = y_first ? std::int8_t(1) : x_first ? std::int8_t(0) : kCollision;
+  // Selected by arithmetic on the comparisons (GCC turns selects of doubles into branches).
+  const int x_first = int(t_x < soonest);
+  soonest = std::min(soonest, t_x);
+  const int y_first = int(t_y < soonest);
+  soonest = std::min(soonest, t_y);
+  const int after_x = kCollision - x_first * kCollision;  // 0 if x is first
+  event_[std::size_t(i)] = std::int8_t(after_x + y_first * (1 - after_x));
   calendar_.set(i, soonest);  // never if at rest and alone: others will find it
 }
 
