@@ -13,17 +13,18 @@ namespace granvv::md {
 
 // LAMMPS: 1e13 atom-steps is about two days at the measured 6.4e7 atom-steps/s (README).
 inline constexpr double kMaxAtomSteps = 1e13;
-// Event-driven: 3e10 collisions is about two days at the measured 2e5 collisions per CPU second
-// of 10^4 disks on this machine (docs/md_benchmarks.md §4).
+// Event-driven: 3e10 collisions is about 17 hours at kEventDrivenCollisionsPerCoreSecond below
+// (two days at the 2e5 collisions per CPU second of the engine's first version).
 inline constexpr double kMaxCollisions = 3e10;
 
 // The rates a work estimate turns into wall time, per core of this machine (2 cores):
 // LAMMPS 7.1e7 atom-steps per second, the bridge's md.wall_seconds for 10^4 disks at phi =
-// 0.05 on one rank (docs/md_benchmarks.md §1, 2026-11-22, load < 1); event-driven 2.5e5
-// collisions per CPU second for 10^4 disks at phi = 0.05 (docs/md_benchmarks.md §4,
-// 2026-12-01, the tournament-tree calendar).
+// 0.05 on one rank (docs/md_benchmarks.md §1, 2026-11-22, load < 1); event-driven 5e5
+// collisions per CPU second, rounded down from the slower of the measured loads that are not
+// the benchmark's dilute gas (1.0-1.1e6): md_paper_scene's clusters 6.7e5, 10^5 disks 5.4e5
+// (docs/md_benchmarks.md §4, 2026-12-03, the bucket-queue calendar).
 inline constexpr double kLammpsAtomStepsPerCoreSecond = 7.1e7;
-inline constexpr double kEventDrivenCollisionsPerCoreSecond = 2.5e5;
+inline constexpr double kEventDrivenCollisionsPerCoreSecond = 5e5;
 // Resident memory of a rank: a fixed part and a part per disk it holds (engine, sample and its
 // overlap grid, moments), from the peak RSS of one-rank runs of 1e5 and 2e5 disks at phi = 0.05
 // (docs/md_benchmarks.md §5): LAMMPS 112 and 183 MB, event-driven 83 and 129 MB.
