@@ -179,7 +179,8 @@ void EventDrivenEngine::gather(int i, double now, const PeriodicCells::Neighbour
   int* disk = c.disk.data();
   // The cells' first members, all looked up and their records fetched before the walk, whose
   // end of each list is a mispredicted branch that would otherwise hold the next lookup back.
-  std::array<int, 9> heads{};
+  std::array<int, PeriodicCells::kNeighbourhood> heads{};
+  if (count > int(heads.size())) throw std::logic_error("gather: more cells than a neighbourhood");
   for (int m = 0; m < count; ++m) heads[std::size_t(m)] = cells_->first(cells[m].cell);
   for (int m = 0; m < count; ++m) __builtin_prefetch(&disks[std::max(heads[std::size_t(m)], 0)]);
   for (int m = 0; m < count; ++m) {

@@ -130,8 +130,8 @@ class EventDrivenEngine final : public ParticleEngine {
   // did), or after it entered a new cell from the three cells that joined the neighbourhood.
   void predict(int i, double now);
   void predict_after_crossing(int i, double now, int axis, int direction);
-  // The candidates of disk i in `count` cells: their separation from it now (in each cell's
-  // image) and their relative velocity, appended to candidates_.
+  // The candidates of disk i in `count` cells (at most a neighbourhood's): their separation from
+  // it now (in each cell's image) and their relative velocity, appended to candidates_.
   void gather(int i, double now, const PeriodicCells::Neighbour* cells, int count);
   // The soonest contact of disk i among candidates_, if sooner than its soonest so far.
   void choose_soonest(int i, double now);

@@ -57,9 +57,10 @@ PeriodicCells::Neighbour PeriodicCells::neighbour(int cx, int cy) const {
   return {y.index * nx_ + x.index, x.shift, y.shift};
 }
 
-std::array<PeriodicCells::Neighbour, 9> PeriodicCells::neighbourhood_of(int particle) const {
+std::array<PeriodicCells::Neighbour, PeriodicCells::kNeighbourhood> PeriodicCells::neighbourhood_of(
+    int particle) const {
   const int cx = column_[std::size_t(particle)], cy = row_[std::size_t(particle)];
-  std::array<Neighbour, 9> around{};
+  std::array<Neighbour, kNeighbourhood> around{};
   int k = 0;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) around[std::size_t(k++)] = neighbour(cx + dx, cy + dy);

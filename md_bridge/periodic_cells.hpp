@@ -36,7 +36,8 @@ class PeriodicCells {
   };
   // The nine cells around a particle's cell (itself included), periodic, row by row from
   // below; from its column and row, without a division (every prediction asks for it).
-  std::array<Neighbour, 9> neighbourhood_of(int particle) const;
+  static constexpr std::size_t kNeighbourhood = 9;
+  std::array<Neighbour, kNeighbourhood> neighbourhood_of(int particle) const;
   // The three cells that join the neighbourhood of a particle that has just entered its cell
   // along axis 0 (x) or 1 (y) in `direction`: the far row or column of its new neighbourhood.
   std::array<Neighbour, 3> entering(int particle, int axis, int direction) const;
