@@ -14,7 +14,7 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 // respect to the second, minimum image) touch when v2 t^2 + 2 b t + gap = 0, b = r . v,
 // gap = |r|^2 - sigma^2, v2 = |v|^2.
 struct ContactQuadratic {
-  double b, gap, v2, discriminant;
+  double b, gap, discriminant;
   // Approaching (b < 0) and not missing (a real root). Positive discriminant whenever gap <= 0
   // and b < 0 (b^2 > 0 >= v2 gap): a pair that already overlaps (round-off) while approaching
   // touches, so that round-off can never let disks pass through each other.
@@ -29,7 +29,7 @@ inline ContactQuadratic contact_quadratic(double dx, double dy, double dvx, doub
   const double b = dx * dvx + dy * dvy;
   const double gap = dx * dx + dy * dy - sigma * sigma;
   const double v2 = dvx * dvx + dvy * dvy;
-  return {b, gap, v2, b * b - v2 * gap};
+  return {b, gap, b * b - v2 * gap};
 }
 
 // Time from now until the two disks touch, or kNever if they are not approaching or miss.

@@ -25,8 +25,7 @@ PeriodicCells::PeriodicCells(double box_length, double box_width, double min_wid
   }
   wx_ = lx_ / nx_;
   wy_ = ly_ / ny_;
-  for (auto* per_particle : {&cell_, &column_, &row_})
-    per_particle->assign(std::size_t(particles), -1);
+  for (auto* per_particle : {&column_, &row_}) per_particle->assign(std::size_t(particles), -1);
   members_.reset(std::size_t(nx_) * std::size_t(ny_), std::size_t(particles));
 }
 
@@ -92,29 +91,24 @@ bool PeriodicCells::step(int particle, int axis, int direction) {
   remove(particle);
   column_[p] = cx;
   row_[p] = cy;
-  link(particle, cy * nx_ + cx);
+  members_.push_front(std::size_t(cell_of(particle)), particle);
   return wraps;
 }
 
 void PeriodicCells::clear() {
-  for (auto* per_particle : {&cell_, &column_, &row_})
+  for (auto* per_particle : {&column_, &row_})
     std::fill(per_particle->begin(), per_particle->end(), -1);
-  members_.reset(std::size_t(nx_) * std::size_t(ny_), cell_.size());
+  members_.reset(std::size_t(nx_) * std::size_t(ny_), column_.size());
 }
 
 void PeriodicCells::insert(int particle, int cell) {
   column_[std::size_t(particle)] = cell % nx_;
   row_[std::size_t(particle)] = cell / nx_;
-  link(particle, cell);
-}
-
-void PeriodicCells::link(int particle, int cell) {
-  cell_[std::size_t(particle)] = cell;
   members_.push_front(std::size_t(cell), particle);
 }
 
 void PeriodicCells::remove(int particle) {
-  members_.remove(std::size_t(cell_[std::size_t(particle)]), particle);
+  members_.remove(std::size_t(cell_of(particle)), particle);
 }
 
 }  // namespace granvv::md

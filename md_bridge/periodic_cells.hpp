@@ -48,7 +48,9 @@ class PeriodicCells {
 
   void clear();
   void insert(int particle, int cell);
-  int cell_of(int particle) const { return cell_[std::size_t(particle)]; }
+  int cell_of(int particle) const {
+    return row_[std::size_t(particle)] * nx_ + column_[std::size_t(particle)];
+  }
   // The members of a cell as a list: first(cell), then next(particle) until -1; members() is
   // the array behind next() for loops that walk many lists.
   int first(int cell) const { return members_.first(std::size_t(cell)); }
@@ -58,15 +60,13 @@ class PeriodicCells {
  private:
   // The cell at column cx, row cy of the periodic grid (each at most one step outside it).
   Neighbour neighbour(int cx, int cy) const;
-  // Adds a particle at the head of a cell's list (its column and row set by the caller).
-  void link(int particle, int cell);
   void remove(int particle);
   double lx_, ly_, wx_, wy_;
   int nx_, ny_;
   // Doubly linked lists of the members (-1 ends them): a few integers per cell and particle,
   // so that the grid stays in cache beside the particles.
   LinkedLists members_;
-  std::vector<int> cell_, column_, row_;  // per particle
+  std::vector<int> column_, row_;  // per particle: its cell's, cell_of() = row nx + column
 };
 
 }  // namespace granvv::md
