@@ -13,17 +13,17 @@
 #include <set>
 #include <thread>
 
-#include "app/atlas_analysis.hpp"
-#include "app/atlas_particles.hpp"
-#include "app/atlas_power.hpp"
-#include "app/atlas_runs.hpp"
-#include "app/atomic_file.hpp"
-#include "app/case_config.hpp"
-#include "app/hydro_scene.hpp"
-#include "app/interruption.hpp"
-#include "app/json_numbers.hpp"
-#include "app/md_scene.hpp"
-#include "app/model.hpp"
+#include "atlas/atlas_analysis.hpp"
+#include "atlas/atlas_particles.hpp"
+#include "atlas/atlas_power.hpp"
+#include "atlas/atlas_runs.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/interruption.hpp"
+#include "scene/json_numbers.hpp"
+#include "scene/md_scene.hpp"
+#include "models/model.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/summary.hpp"
@@ -340,7 +340,7 @@ json skipped_for_budget(const AtlasSetting& s, double estimate, double share, do
                          format_real(budget) + ")"}};
 }
 
-// The comparison power within its share of the budget (app/atlas_power.hpp): the eps grid is
+// The comparison power within its share of the budget (atlas/atlas_power.hpp): the eps grid is
 // thinned to every other value until its hydro runs fit, and skipped with the reason if even
 // two values do not.
 json comparison_power_within(const AtlasScene& scene, const std::vector<AtlasRun>& runs,

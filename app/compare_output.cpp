@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "app/json_numbers.hpp"
+#include "scene/json_numbers.hpp"
 #include "app/md_output.hpp"
 #include "app/summary.hpp"
 #include "fields/hdf5_datasets.hpp"

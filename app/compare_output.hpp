@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/compare_scene.hpp"
+#include "models/compare_scene.hpp"
 
 namespace granvv::app {
 

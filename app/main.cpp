@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "app/atlas_command.hpp"
-#include "app/case_catalog.hpp"
-#include "app/case_config.hpp"
-#include "app/md_checkpoint.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
+#include "scene/md_checkpoint.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"

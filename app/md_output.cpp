@@ -4,7 +4,7 @@
 #include <cmath>
 #include <variant>
 
-#include "app/json_numbers.hpp"
+#include "scene/json_numbers.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/enskog_factors.hpp"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "app/md_scene.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 

@@ -17,7 +17,7 @@
 #include <regex>
 #include <sstream>
 
-#include "app/atomic_file.hpp"
+#include "scene/atomic_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 
 namespace granvv::app {

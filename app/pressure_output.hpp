@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "app/hydro_scene.hpp"
-#include "app/md_scene.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <string>
 
-#include "app/case_config.hpp"
-#include "app/data_directory.hpp"
+#include "scene/case_config.hpp"
+#include "scene/data_directory.hpp"
 #include "app/output_folder.hpp"
 
 namespace granvv::app {

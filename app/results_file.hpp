@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/hydro_scene.hpp"
+#include "scene/hydro_scene.hpp"
 
 namespace granvv::app {
 

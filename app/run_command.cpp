@@ -12,17 +12,17 @@
 #include <iostream>
 #include <optional>
 
-#include "app/atomic_file.hpp"
-#include "app/case_catalog.hpp"
-#include "app/case_config.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
 #include "app/compare_output.hpp"
-#include "app/compare_scene.hpp"
-#include "app/hydro_scene.hpp"
-#include "app/initial_provenance.hpp"
-#include "app/interruption.hpp"
-#include "app/md_checkpoint.hpp"
+#include "models/compare_scene.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/initial_provenance.hpp"
+#include "scene/interruption.hpp"
+#include "scene/md_checkpoint.hpp"
 #include "app/md_output.hpp"
-#include "app/md_scene.hpp"
+#include "scene/md_scene.hpp"
 #include "app/mpi_ranks.hpp"
 #include "app/output_folder.hpp"
 #include "app/pressure_output.hpp"
@@ -366,7 +366,7 @@ int run_command(const RunOptions& options) {
       summary["md"] = {{"status", "failed"}};
       md_scene->spec.creator_version = GRANVV_VERSION;
       const auto engine = make_engine(*md_scene, writer ? work.string() : "");
-      // Checkpoints (app/md_checkpoint.hpp), the same choice on every rank; rank 0 writes them,
+      // Checkpoints (scene/md_checkpoint.hpp), the same choice on every rank; rank 0 writes them,
       // and the particle files go with them until the particle part is done.
       MdCheckpointing checkpointing;
       checkpointing.resume = resume_from;

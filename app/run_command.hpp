@@ -11,7 +11,7 @@ struct RunOptions {
   bool dry_run = false;
   bool quiet = false;
   bool report = true;
-  // Continue the checkpoints in the output folder (app/md_checkpoint.hpp) if they are of this
+  // Continue the checkpoints in the output folder (scene/md_checkpoint.hpp) if they are of this
   // resolved case (exit 2 if they are of another); without any, start from t = 0.
   bool resume = false;
 };

@@ -5,7 +5,7 @@
 #include <optional>
 #include <sstream>
 
-#include "app/json_numbers.hpp"
+#include "scene/json_numbers.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_stability.hpp"
 

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/hydro_scene.hpp"
+#include "scene/hydro_scene.hpp"
 
 namespace granvv::app {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_config.hpp"
-#include "app/hydro_scene.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 #include "hydro/integrator.hpp"
 #include "hydro/periodic_tridiagonal.hpp"
 

@@ -17,7 +17,7 @@
 
 namespace granvv::hydro {
 
-// The case's hydro.* keys (defaults in the case schema, app/case_schema.cpp).
+// The case's hydro.* keys (defaults in the case schema, scene/case_schema.cpp).
 struct RunControl {
   double t_end = 0.0;
   std::vector<double> output_times;  // snapshots are taken exactly at these times

@@ -1,6 +1,6 @@
 #pragma once
 // Named scalar parameters of a model part (an initial condition, ...), declared by the part
-// itself: name, default, allowed range and a one-line help. The case schema (app/case_schema.cpp)
+// itself: name, default, allowed range and a one-line help. The case schema (scene/case_schema.cpp)
 // turns each declaration into a case key, so a parameter is stated in one place only.
 #include <map>
 #include <optional>

@@ -10,7 +10,7 @@
 
 namespace granvv::md {
 
-// The allowed values of md.engine (its default is in app/case_schema.cpp).
+// The allowed values of md.engine (its default is in scene/case_schema.cpp).
 std::vector<std::string> particle_engine_names();
 
 // Throws std::invalid_argument for an unknown name (listing the known ones) or settings the

@@ -1,6 +1,6 @@
 #pragma once
 // The work of a particle run, estimated before anything runs, in each engine's own unit and
-// against the most that unit can do here (app/md_scene.cpp refuses a run beyond it, naming the
+// against the most that unit can do here (scene/md_scene.cpp refuses a run beyond it, naming the
 // key). The registry picks an engine's estimate by md.engine (particle_engine_registry.hpp).
 #include <limits>
 #include <string>

@@ -366,7 +366,7 @@ class Mpi(FolderState):
         p.communicate(timeout=TIMEOUT)
         self.assertFalse((d / "summary.json").exists())
         # The checkpoint holds each rank's block of the particles in a file of its own, not all
-        # of them in member_1.h5 (app/md_checkpoint.hpp).
+        # of them in member_1.h5 (scene/md_checkpoint.hpp).
         c = d / ".granvv-checkpoint"
         with h5py.File(c / "member_1.h5", "r") as f:
             self.assertEqual(f["engine"].attrs["particle_blocks"], 2)

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "app/case_catalog.hpp"
-#include "app/case_config.hpp"
-#include "app/hydro_scene.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::app {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_config.hpp"
-#include "app/case_schema.hpp"
+#include "scene/case_config.hpp"
+#include "scene/case_schema.hpp"
 
 namespace granvv::app {
 namespace {

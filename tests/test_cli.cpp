@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "app/case_schema.hpp"
+#include "scene/case_schema.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "support/cli_runner.hpp"

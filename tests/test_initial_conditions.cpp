@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/case_schema.hpp"
+#include "scene/case_schema.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 

@@ -1,4 +1,4 @@
-// The ladder's models behind one interface (app/model.hpp) and any two of them compared
+// The ladder's models behind one interface (models/model.hpp) and any two of them compared
 // (compare/model_comparison.hpp), against exact answers: the hydro's homogeneous cooling state
 // is Haff's law to round-off (its cooling step is exact), flow by inertia conserves mass and
 // keeps its singularity time 1/(2 pi |a|), and a model compared with itself differs nowhere.
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_config.hpp"
-#include "app/model.hpp"
+#include "scene/case_config.hpp"
+#include "models/model.hpp"
 #include "compare/model_comparison.hpp"
 
 namespace granvv::app {

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "app/case_config.hpp"
-#include "app/hydro_scene.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 
 namespace granvv::app {
 namespace {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_config.hpp"
-#include "app/hydro_scene.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 #include "fields/field_series_file.hpp"
 #include "hydro/formula.hpp"
 #include "hydro/initial_condition_registry.hpp"

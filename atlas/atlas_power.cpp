@@ -1,0 +1,133 @@
+#include "atlas/atlas_power.hpp"
+
+#include <cmath>
+
+#include "scene/json_numbers.hpp"
+#include "atlas/detectable_error.hpp"
+#include "compare/side_by_side.hpp"
+
+namespace granvv::app {
+using nlohmann::json;
+
+namespace {
+
+// The two directions of an injected error: the coefficient made larger and smaller.
+struct Direction {
+  const char* name;
+  double sign;
+};
+constexpr Direction kDirections[] = {{"up", 1.0}, {"down", -1.0}};
+
+double injected_factor(double eps, double sign) {
+  return std::pow(1.0 + eps, sign);
+}
+
+// One hydro judged against one particle run, as `granvv run` judges its comparison.
+atlas::JudgedHydro judge(const AtlasScene& scene, const AtlasRun& hydro, const AtlasRun& particles,
+                         compare::Disagreement* kind = nullptr) {
+  atlas::JudgedHydro j;
+  if (hydro.status != "ok" || !hydro.fields || !particles.fields ||
+      hydro.times.size() != scene.times.size()) {
+    return j;
+  }
+  const compare::VerdictRule rule{compare::kClearSignalToNoise, scene.sigmas};
+  const compare::SideBySide s = compare::judge_side_by_side(
+      *particles.fields, *hydro.fields, compare::compared_fields(scene.transverse), scene.sigmas,
+      scene.agreement_fraction, scene.signal_to_noise, rule);
+  j.finished = true;
+  j.model_disagreement = s.kind == compare::Disagreement::model_clear_signal ||
+                         s.kind == compare::Disagreement::model_box_offset;
+  j.agreed_throughout = s.window.throughout;
+  j.agreed_until = s.window.until;
+  if (kind) *kind = s.kind;
+  return j;
+}
+
+}  // namespace
+
+const std::vector<std::string>& injected_error_keys() {
+  static const std::vector<std::string> keys = {"viscosity_factor", "conductivity_factor",
+                                                "cooling_factor"};
+  return keys;
+}
+
+std::vector<AtlasSetting> comparison_power_settings(const AtlasScene& scene,
+                                                    const std::vector<double>& epsilons) {
+  std::vector<AtlasSetting> settings;
+  for (const auto& key : injected_error_keys()) {
+    for (const Direction d : kDirections) {
+      for (double eps : epsilons) {
+        AtlasSetting s;
+        s.model = "hydro/" + scene.closure;
+        s.cells = scene.case_cells;
+        s.step_factor = 1.0;
+        s.injected = key;
+        s.injected_factor = injected_factor(eps, d.sign);
+        settings.push_back(s);
+      }
+    }
+  }
+  return settings;
+}
+
+json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
+                      const std::vector<AtlasRun>& hydro_runs,
+                      const std::vector<const AtlasRun*>& particle_runs,
+                      const std::vector<double>& epsilons) {
+  auto find_run = [&](const std::string& key, double factor) -> const AtlasRun* {
+    for (const auto& r : hydro_runs) {
+      if (r.setting.injected == key && r.setting.injected_factor == factor) return &r;
+    }
+    return nullptr;
+  };
+  json rows = json::array();
+  for (const AtlasRun* p : particle_runs) {
+    compare::Disagreement base_kind = compare::Disagreement::none;
+    const atlas::JudgedHydro base = judge(scene, unperturbed, *p, &base_kind);
+    json detectable = json::object(), verdicts = json::object();
+    for (const auto& key : injected_error_keys()) {
+      for (const Direction d : kDirections) {
+        std::vector<bool> caught, finished;
+        json marks = json::array();
+        for (double eps : epsilons) {
+          const AtlasRun* h = find_run(key, injected_factor(eps, d.sign));
+          const atlas::JudgedHydro j = h ? judge(scene, *h, *p) : atlas::JudgedHydro{};
+          finished.push_back(j.finished);
+          caught.push_back(atlas::catches_injected_error(j, base));
+          marks.push_back(!j.finished ? "not_run" : caught.back() ? "caught" : "missed");
+        }
+        const auto from = atlas::smallest_detectable(epsilons, caught, finished);
+        detectable[key][d.name] = from ? json(*from) : json(nullptr);
+        verdicts[key][d.name] = marks;
+      }
+    }
+    rows.push_back(
+        {{"setting", setting_json(p->setting)},
+         {"wall_seconds", p->cost.wall_seconds},
+         {"work", p->cost.work},
+         {"work_unit", p->cost.work_unit},
+         {"unperturbed",
+          {{"disagreement", compare::disagreement_name(base_kind)},
+           {"finished", base.finished},
+           {"agreed_throughout", base.agreed_throughout},
+           {"agreed_until", base.agreed_until ? json(*base.agreed_until) : json(nullptr)}}},
+         {"detectable", detectable},
+         {"verdicts", verdicts}});
+  }
+  return {{"hydro", setting_json(unperturbed.setting)},
+          {"keys", injected_error_keys()},
+          {"epsilons", epsilons},
+          {"directions", {"up: the coefficient times (1 + eps)", "down: divided by (1 + eps)"}},
+          {"signal_to_noise", number_or_null(scene.signal_to_noise)},
+          {"disks_per_member", scene.particle_count},
+          {"how",
+           "each injected hydro is judged side by side against each particle run as granvv run "
+           "judges its comparison (compare.sigmas, compare.agreement_fraction, the verdict "
+           "rule); an eps is caught when the verdict is a model disagreement that the "
+           "unperturbed hydro does not have (an earlier parting, or any parting where it "
+           "agreed throughout); detectable is the smallest eps from which every larger one is "
+           "caught"},
+          {"particles", rows}};
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,34 @@
+#pragma once
+// The atlas's comparison power (docs/atlas.md): how much particle work it takes to test a
+// hydro. The hydro at the case's own setting is run with each transport factor of
+// hydro/transport_factors.hpp (viscosity, conductivity, cooling) multiplied by (1 + eps) and
+// divided by it, over a log grid of eps; each of these hydros is judged side by side against
+// every particle run of the reference engine (its ensemble sizes are the particle cost axis),
+// as `granvv run` judges its comparison, and the smallest eps the comparison catches
+// (atlas/detectable_error.hpp) is found for each particle cost.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "atlas/atlas_runs.hpp"
+
+namespace granvv::app {
+
+// The case keys (without "hydro.") of the injected errors, in the order the atlas gives them.
+const std::vector<std::string>& injected_error_keys();
+
+// The hydro runs of the comparison power: the case's own closure, cells and step factor 1 with
+// one key at (1 + eps)^direction, direction +1 and -1, for every key and eps.
+std::vector<AtlasSetting> comparison_power_settings(const AtlasScene& scene,
+                                                    const std::vector<double>& epsilons);
+
+// atlas.json `comparison_power`: the unperturbed hydro's judgement against each particle run,
+// and for each particle run, key and direction the verdict of every eps and the smallest eps
+// caught (null: none up to the largest that finished). `hydro_runs` holds the runs of
+// comparison_power_settings (any order; a missing or failed one counts as not finished).
+nlohmann::json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
+                                const std::vector<AtlasRun>& hydro_runs,
+                                const std::vector<const AtlasRun*>& particle_runs,
+                                const std::vector<double>& epsilons);
+
+}  // namespace granvv::app

@@ -1,0 +1,324 @@
+#include "models/compare_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "models/model.hpp"
+#include "compare/binned_energies.hpp"
+#include "compare/density_modes.hpp"
+#include "compare/ensemble_error_model.hpp"
+#include "compare/ensemble_fields.hpp"
+#include "compare/ensemble_statistics.hpp"
+#include "compare/inertia_measures.hpp"
+#include "compare/model_comparison.hpp"
+#include "compare/profile_measures.hpp"
+#include "compare/side_by_side.hpp"
+#include "compare/verdict.hpp"
+#include "hydro/flow_by_inertia.hpp"
+#include "hydro/haff.hpp"
+#include "hydro/linear_stability.hpp"
+
+namespace granvv::app {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Peak density, |dv/dx| at the peak and the energies per particle, both engines on the bins.
+void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& hb,
+                              const fields::FieldSnapshot& md, int members) {
+  const std::size_t hp = compare::peak_bin(hb.n), mp = compare::peak_bin(md.n);
+  out.hydro_n_peak.push_back(hb.n[hp]);
+  out.md_n_peak.push_back(md.n[mp]);
+  out.md_n_peak_error.push_back(md.n_stderr[mp]);
+  out.hydro_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(hb.v_x, hp)));
+  out.md_dvdx_peak.push_back(std::abs(compare::periodic_centred_slope(md.v_x, mp)));
+  const compare::EnergiesPerParticle hydro = compare::box_energies(hb);
+  const compare::EnergiesPerParticle particles =
+      compare::noise_corrected_energies(md, md.count, members);
+  out.hydro_energy_thermal.push_back(hydro.thermal);
+  out.hydro_energy_kinetic.push_back(hydro.flow);
+  out.md_energy_thermal.push_back(particles.thermal);
+  out.md_energy_kinetic.push_back(particles.flow);
+}
+
+// Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
+// noise-born modes differ between seeds, so the mean field would average them away), and the
+// linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with exp(A s)
+// (hydro/linear_stability.hpp), rms over members.
+void compare_density_modes(CompareOutcome& out, int modes, const hydro::Closure& closure,
+                           const MdOutcome& md_out,
+                           const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                           const fields::FieldSeries& hydro_on_bins, double n0) {
+  const int members = static_cast<int>(md_out.runs.size());
+  for (int k = 1; k <= modes; ++k) {
+    out.theory_rate.push_back(hydro::hcs_modes(closure, k)[0].rate.real());
+  }
+  std::vector<std::vector<Eigen::Vector3cd>> initial(members);
+  for (int r = 0; r < members; ++r) {
+    const auto& f = md_out.runs[r].fields.snapshots.front();
+    for (int k = 1; k <= modes; ++k) {
+      initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
+    }
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& hb = hydro_on_bins.snapshots[pairs[i].second];
+    std::vector<double> hydro_row, md_row, md_err, theory_row;
+    const std::size_t s_index = pairs[i].first;
+    for (int k = 1; k <= modes; ++k) {
+      hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
+      std::vector<std::vector<double>> power;  // one |n_k|^2 per member
+      double theory2 = 0.0;
+      for (int r = 0; r < members; ++r) {
+        const auto& snaps = md_out.runs[r].fields.snapshots;
+        if (s_index >= snaps.size()) continue;
+        std::vector<double> relative;
+        for (double n : snaps[s_index].n) relative.push_back(n / n0);
+        power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
+        const Eigen::Vector3cd evolved =
+            hydro::hcs_linear_evolution(closure, k, initial[r][k - 1], out.collision_clock[i]);
+        theory2 += std::norm(evolved[0]);
+      }
+      // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
+      const auto st = compare::ensemble_statistics(power);
+      const double rms = std::sqrt(st.mean[0]);
+      md_row.push_back(rms);
+      md_err.push_back(rms > 0 ? 0.5 * st.standard_error[0] / rms : kNaN);
+      theory_row.push_back(std::sqrt(theory2 / members));
+    }
+    out.hydro_modes.push_back(hydro_row);
+    out.md_modes.push_back(md_row);
+    out.md_modes_error.push_back(md_err);
+    out.theory_modes.push_back(theory_row);
+  }
+}
+
+// The four measures of one binned state (n relative to its mean, v scaled), in the order of
+// kInertiaMeasures.
+std::vector<double> inertia_measures(const std::vector<double>& n, const std::vector<double>& v,
+                                     double half_width) {
+  return {compare::sine_mode_amplitude(v, 1), compare::cosine_mode_amplitude(n, 1),
+          compare::central_window_mass(n, half_width), compare::central_density(n)};
+}
+constexpr CompareOutcome::InertiaMeasure CompareOutcome::*kInertiaMeasures[] = {
+    &CompareOutcome::v_mode, &CompareOutcome::n_mode, &CompareOutcome::window_mass,
+    &CompareOutcome::n_centre};
+
+// The flow by inertia's measures for the particles (per member, then mean and error), the
+// hydro and flow by inertia on the bins, at every compared time.
+void compare_inertia_measures(CompareOutcome& out, const MdOutcome& md_out,
+                              const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                              double n0) {
+  out.central_window = compare::kCentralWindowHalfWidth;
+  const double w = out.central_window;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    std::vector<std::vector<double>> members;
+    for (const auto& run : md_out.runs) {
+      if (pairs[i].first >= run.fields.snapshots.size()) continue;
+      const auto& s = run.fields.snapshots[pairs[i].first];
+      std::vector<double> relative;
+      for (double n : s.n) relative.push_back(n / n0);
+      members.push_back(inertia_measures(relative, s.v_x, w));
+    }
+    const auto st = compare::ensemble_statistics(members);
+    const auto& h = out.hydro_on_bins.snapshots[i];
+    const auto hydro = inertia_measures(h.n, h.v_x, w);
+    const auto inertia = inertia_measures(out.inertia_n[i], out.inertia_v[i], w);
+    for (std::size_t m = 0; m < std::size(kInertiaMeasures); ++m) {
+      CompareOutcome::InertiaMeasure& series = out.*kInertiaMeasures[m];
+      series.md.push_back(m < st.mean.size() ? st.mean[m] : kNaN);
+      series.md_error.push_back(m < st.standard_error.size() ? st.standard_error[m] : kNaN);
+      series.hydro.push_back(hydro[m]);
+      series.inertia.push_back(inertia[m]);
+    }
+  }
+}
+
+// The verdict line of a judgement (compare/side_by_side.hpp).
+void write_verdict(CompareOutcome& out, const CompareScene& scene,
+                   const compare::SideBySide& judged) {
+  out.window = judged.window;
+  out.offset_sigmas = judged.offset_sigmas;
+  out.disagreement = compare::disagreement_name(judged.kind);
+  out.verdict =
+      compare::verdict_sentence(out.window, out.t.empty() ? kNaN : out.t.back(), scene.sigmas,
+                                out.signal_to_noise, out.offset_sigmas, judged.kind);
+}
+
+}  // namespace
+
+std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
+  if (!c.boolean("compare.enabled")) return std::nullopt;
+  CompareScene s;
+  s.hydro_from_md = c.string("compare.hydro_initial") == "md";
+  s.sigmas = c.real("compare.sigmas");
+  s.verdict_rule.offset_sigmas = s.sigmas;
+  s.agreement_fraction = c.real("compare.agreement_fraction");
+  s.density_modes = c.int_value("compare.density_modes");
+  const long long bins = c.int_value("md.bins");
+  if (2LL * s.density_modes >= bins) {
+    throw ConfigError(c.origin("compare.density_modes") +
+                      ": compare.density_modes = " + std::to_string(s.density_modes) +
+                      ": must be < md.bins / 2 = " + std::to_string(bins / 2) +
+                      " (the Nyquist mode of the bins)");
+  }
+  s.closures = c.strings("compare.closures");
+  const std::string listed = format_value(c.value("compare.closures"));
+  if (s.closures.front() != c.string("hydro.closure")) {
+    throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
+                      ": the first closure fills the hydro and compare blocks, so it must be "
+                      "hydro.closure = \"" +
+                      c.string("hydro.closure") + "\" (list it first)");
+  }
+  // Each closure models the particle scene: its phi0 is md.area_fraction (scene/hydro_scene.cpp).
+  hydro::ClosureParameters params;
+  params.physics = {c.real("physics.K"), c.real("physics.q")};
+  params.extra = {{"area_fraction", c.real("md.area_fraction")}};
+  for (const auto& name : s.closures) {
+    if (const auto problem = hydro::closure_parameter_problem(name, params)) {
+      throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
+                        ": closure \"" + name + "\" cannot model the particles at " +
+                        "md.area_fraction = " + format_value(c.value("md.area_fraction")) + " (" +
+                        problem->reason + ")");
+    }
+  }
+  if (c.string("md.kernel") != "bin") {
+    throw ConfigError(c.origin("md.kernel") + ": md.kernel = \"" + c.string("md.kernel") +
+                      "\": a comparison bins the hydro like the particles, so it needs "
+                      "md.kernel = \"bin\"");
+  }
+  return s;
+}
+
+void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
+                         const fields::FieldSeries& md_fields) {
+  hydro.physics = scene.physics();
+  hydro.area_fraction = scene.area_fraction;
+  auto& ctl = hydro.control;
+  ctl.t_end = scene.scaled_time(md_t_end);
+  ctl.output_times.clear();
+  for (const auto& s : md_fields.snapshots) {
+    const double t = scene.scaled_time(s.t);
+    if (t > 0.0 && (ctl.output_times.empty() || t > ctl.output_times.back())) {
+      ctl.output_times.push_back(t);
+    }
+  }
+  if (!ctl.output_times.empty()) ctl.t_end = std::max(ctl.t_end, ctl.output_times.back());
+}
+
+hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& s,
+                                          const md::ParticleScene& scene) {
+  const double n0 = scene.number_density();
+  std::vector<double> n, vx, vy, T;
+  for (std::size_t b = 0; b < s.x.size(); ++b) {
+    const double values[] = {s.n[b], s.v_x[b], s.v_y[b], s.T[b]};
+    for (double v : values) {
+      if (!std::isfinite(v)) {
+        throw std::runtime_error("the MD's coarse-grained fields at t = " + std::to_string(s.t) +
+                                 " have an empty bin (" + std::to_string(b) +
+                                 "); use fewer md.bins to start the hydro "
+                                 "from them");
+      }
+    }
+    n.push_back(s.n[b] / n0), vx.push_back(s.v_x[b]), vy.push_back(s.v_y[b]);
+    T.push_back(s.T[b]);
+  }
+  hydro::InitialFields f;
+  f.n = compare::bin_interpolant(n);
+  f.v = compare::bin_interpolant(vx);
+  f.vy = compare::bin_interpolant(vy);
+  f.T = compare::bin_interpolant(T);
+  return f;
+}
+
+std::vector<std::string> monitors_fired_by(const hydro::ValidityRecord& validity,
+                                           const compare::AgreementWindow& window) {
+  std::vector<std::string> fired;
+  if (window.throughout || !window.left_at) return fired;
+  for (const auto& d : hydro::monitor_definitions()) {
+    const auto& crossing = validity.first_crossing[static_cast<int>(d.monitor)];
+    if (crossing && crossing->time <= *window.left_at) fired.push_back(d.name);
+  }
+  return fired;
+}
+
+CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydro,
+                               const HydroOutcome& hydro_out, const MdScene& md,
+                               const MdOutcome& md_out) {
+  const auto& sc = md.spec.scene;
+  const double n0 = sc.number_density();
+  const int bins = md.spec.bins;
+  const int members = static_cast<int>(md_out.runs.size());
+  const auto closure = make_hydro_closure(hydro);  // its Haff time and linear theory
+  CompareOutcome out;
+  for (int b = 0; b < bins; ++b) out.x.push_back(-0.5 + (b + 0.5) / bins);
+
+  // Both models on the particles' bins, scaled units (models/model.hpp): the particles' ensemble
+  // mean with the error of that mean, and the hydro binned like the particles.
+  std::vector<fields::FieldSeries> member_fields;
+  for (const auto& run : md_out.runs) member_fields.push_back(run.fields);
+  const compare::EnsembleMeanFields mean =
+      compare::ensemble_mean_fields(member_fields, scaled_units(sc));
+  const fields::ModelResult particles = particle_result(md, md_out, mean.fields);
+  const fields::ModelResult continuum = hydro_result(hydro, hydro_out, bins);
+  // The output times both reached: each particle snapshot against the hydro's at that time.
+  out.signal_to_noise = initial_signal_to_noise(md).ratio();
+  const compare::SideBySide judged = compare::judge_side_by_side(
+      *particles.fields, *continuum.fields, compare::compared_fields(hydro.transverse),
+      scene.sigmas, scene.agreement_fraction, out.signal_to_noise, scene.verdict_rule);
+  const auto& pairs = judged.pairs;
+  for (const auto& track : judged.tracks) {
+    FieldComparison f;
+    f.name = track.field;
+    f.track = track;
+    if (!pairs.empty()) {  // how the error was made, at the last compared time
+      const auto& all = compare::fields_with_errors();
+      const auto k = std::find(all.begin(), all.end(), f.name) - all.begin();
+      f.error_source = mean.error_source[pairs.back().first][k];
+    }
+    out.fields.push_back(std::move(f));
+  }
+
+  out.hydro_on_bins = out.md_on_bins = fields::FieldSeries::on_bins(-0.5, 1.0, bins);
+  for (const auto& [i, j] : pairs) {
+    const fields::FieldSnapshot& m = particles.fields->snapshots[i];
+    const fields::FieldSnapshot& h = continuum.fields->snapshots[j];
+    out.t.push_back(m.t);
+    record_peak_and_energies(out, h, m, members);
+    out.collision_clock.push_back(hydro::collision_clock(m.t, hydro::haff_time_scale(*closure)));
+    out.hydro_on_bins.snapshots.push_back(h);
+    out.md_on_bins.snapshots.push_back(m);
+  }
+
+  // Flow by inertia (paper Eq. 5) on the same bins where the case's initial velocity has it,
+  // NaN rows at the times it does not reach (at and after its singularity).
+  std::optional<fields::ModelResult> inertia;
+  if (hydro::inertia_reference(hydro.initial)) {
+    inertia = make_inertia_model(hydro.initial, hydro.physics, out.t, bins)->run();
+  }
+  for (double t : out.t) {
+    const fields::FieldSnapshot* s = nullptr;
+    if (inertia) {
+      for (const auto& snap : inertia->fields->snapshots) {
+        if (snap.t == t) s = &snap;
+      }
+    }
+    out.inertia_n.push_back(s ? s->n : std::vector<double>(bins, kNaN));
+    out.inertia_v.push_back(s ? s->v_x : std::vector<double>(bins, kNaN));
+    out.inertia_n_peak.push_back(s ? *std::max_element(s->n.begin(), s->n.end()) : kNaN);
+  }
+
+  compare_inertia_measures(out, md_out, pairs, n0);
+  if (scene.density_modes > 0 && !pairs.empty()) {
+    compare_density_modes(out, scene.density_modes, *closure, md_out, pairs, *continuum.fields, n0);
+  }
+
+  write_verdict(out, scene, judged);
+  return out;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,270 @@
+#include "scene/md_checkpoint.hpp"
+
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "scene/atomic_file.hpp"
+#include "fields/field_series_file.hpp"
+#include "fields/hdf5_datasets.hpp"
+#include "md_bridge/every_rank.hpp"
+
+namespace granvv::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path member_file(const fs::path& out_dir, int member) {
+  return checkpoint_folder(out_dir) / ("member_" + std::to_string(member) + ".h5");
+}
+
+// Rank k's block of member m's particles at step S: member_<m>.step<S>.rank<k>.h5.
+std::string block_prefix(int member) {
+  return "member_" + std::to_string(member) + ".step";
+}
+fs::path block_file(const fs::path& out_dir, int member, long long step, int rank) {
+  return checkpoint_folder(out_dir) /
+         (block_prefix(member) + std::to_string(step) + ".rank" + std::to_string(rank) + ".h5");
+}
+
+// Writes `write(file)` to file.partial, puts it on the disk and renames it to file; throws
+// std::runtime_error naming file (the partial file removed).
+template <class Write>
+void write_replacing(const fs::path& file, const Write& write) {
+  const fs::path partial = file.string() + ".partial";
+  try {
+    write(partial);
+    sync_to_disk(partial);
+    std::error_code error;
+    fs::rename(partial, file, error);
+    if (error) throw std::runtime_error(error.message());
+    sync_to_disk(file.parent_path());
+  } catch (const H5::Exception& e) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " +
+                             e.getDetailMsg());
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
+  }
+}
+
+void write_particles(const fs::path& file, const md::EngineState& e) {
+  H5::H5File h5(file.string(), H5F_ACC_TRUNC);
+  H5::Group root = h5.openGroup("/");
+  h5::write_attribute(root, "first_row", double(e.first_row));
+  h5::write_vector(root, "x", e.particles.x);
+  h5::write_vector(root, "v", e.particles.v);
+  h5.close();
+}
+
+void write_state(const fs::path& file, const MemberCheckpoint& c) {
+  const md::MdRunState& s = c.state;
+  const md::MdRunResult& r = s.so_far;
+  H5::H5File h5(file.string(), H5F_ACC_TRUNC);
+  H5::Group root = h5.openGroup("/");
+  h5::write_attribute(root, "finished", c.finished ? 1.0 : 0.0);
+  h5::write_attribute(root, "particle_part_wall_seconds", c.particle_part_wall_seconds);
+  h5::write_attribute(root, "t", s.t);
+  h5::write_attribute(root, "next_output", double(s.next_output));
+  h5::write_attribute(root, "next_frame", s.next_frame);
+  h5::write_attribute(root, "status", r.status);
+  h5::write_attribute(root, "stop_reason", r.stop_reason);
+  h5::write_attribute(root, "wall_seconds", r.wall_seconds);
+  h5::write_attribute(root, "steps", double(r.steps));
+
+  H5::Group series = h5.createGroup("/series");
+  for (const auto& column : md::md_series_columns()) {
+    h5::write_vector(series, column.name, r.series.*column.values);
+  }
+  H5::Group engine_series = h5.createGroup("/series/engine");
+  std::vector<std::string> engine_names;
+  for (const auto& [name, values] : r.series.engine) {
+    engine_names.push_back(name);
+    h5::write_vector(engine_series, name, values);
+  }
+  h5::write_strings(series, "engine_names", engine_names);
+
+  H5::Group fields = h5.createGroup("/fields");
+  fields::write_field_series(fields, r.fields);
+
+  H5::Group engine = h5.createGroup("/engine");
+  std::vector<std::string> names;
+  std::vector<double> values;
+  for (const auto& [name, value] : s.engine.numbers) {
+    names.push_back(name);
+    values.push_back(value);
+  }
+  h5::write_strings(engine, "names", names);
+  h5::write_vector(engine, "values", values);
+  if (s.engine.particle_blocks > 1) {  // the particles are in the ranks' block files
+    h5::write_attribute(engine, "particle_blocks", double(s.engine.particle_blocks));
+    h5::write_vector(engine, "x", {});
+    h5::write_vector(engine, "v", {});
+  } else {
+    h5::write_vector(engine, "x", s.engine.particles.x);
+    h5::write_vector(engine, "v", s.engine.particles.v);
+  }
+  h5.close();
+}
+
+MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int member, int rank,
+                            int ranks) {
+  MemberCheckpoint c;
+  md::MdRunState& s = c.state;
+  md::MdRunResult& r = s.so_far;
+  const H5::H5File h5(file.string(), H5F_ACC_RDONLY);
+  const H5::Group root = h5.openGroup("/");
+  c.finished = h5::read_double_attribute(root, "finished") != 0.0;
+  c.particle_part_wall_seconds = h5::read_double_attribute(root, "particle_part_wall_seconds");
+  s.t = h5::read_double_attribute(root, "t");
+  s.next_output = static_cast<std::size_t>(h5::read_double_attribute(root, "next_output"));
+  s.next_frame = h5::read_double_attribute(root, "next_frame");
+  r.status = h5::read_string_attribute(root, "status");
+  r.stop_reason = h5::read_string_attribute(root, "stop_reason");
+  r.wall_seconds = h5::read_double_attribute(root, "wall_seconds");
+  r.steps = static_cast<long long>(h5::read_double_attribute(root, "steps"));
+
+  const H5::Group series = h5.openGroup("/series");
+  for (const auto& column : md::md_series_columns()) {
+    r.series.*column.values = h5::read_doubles(series, column.name).values;
+  }
+  const H5::Group engine_series = h5.openGroup("/series/engine");
+  for (const auto& name : h5::read_strings(series, "engine_names")) {
+    r.series.engine.push_back({name, h5::read_doubles(engine_series, name).values});
+  }
+  r.fields = fields::read_field_series(h5.openGroup("/fields"));
+
+  const H5::Group engine = h5.openGroup("/engine");
+  const std::vector<std::string> names = h5::read_strings(engine, "names");
+  const std::vector<double> values = h5::read_doubles(engine, "values").values;
+  if (names.size() != values.size()) throw std::runtime_error("engine numbers without names");
+  for (std::size_t i = 0; i < names.size(); ++i) s.engine.numbers.push_back({names[i], values[i]});
+  s.engine.particles.x = h5::read_doubles(engine, "x").values;
+  s.engine.particles.v = h5::read_doubles(engine, "v").values;
+  if (engine.attrExists("particle_blocks")) {
+    const int blocks = int(h5::read_double_attribute(engine, "particle_blocks"));
+    if (blocks != ranks)
+      throw std::runtime_error("its particles were saved in blocks by " + std::to_string(blocks) +
+                               " MPI ranks, and this run has " + std::to_string(ranks) +
+                               ": resume it under mpirun -np " + std::to_string(blocks));
+    s.engine.particle_blocks = blocks;
+    const fs::path own = block_file(out_dir, member, r.steps, rank);
+    const H5::H5File block(own.string(), H5F_ACC_RDONLY);
+    const H5::Group block_root = block.openGroup("/");
+    s.engine.first_row = std::llround(h5::read_double_attribute(block_root, "first_row"));
+    s.engine.particles.x = h5::read_doubles(block_root, "x").values;
+    s.engine.particles.v = h5::read_doubles(block_root, "v").values;
+  }
+  return c;
+}
+
+}  // namespace
+
+fs::path checkpoint_folder(const fs::path& out_dir) {
+  return out_dir / ".granvv-checkpoint";
+}
+
+std::optional<std::string> checkpointed_case(const fs::path& out_dir) {
+  std::ifstream in(checkpoint_folder(out_dir) / "case.toml");
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string checkpointed_case_difference(const std::string& checkpointed_case,
+                                         const CaseConfig& config) {
+  static const std::set<std::string> outside_the_results{
+      "md.checkpoint_interval", "md.accept_long_run", "hydro.progress_seconds"};
+  std::map<std::string, std::string> before, now;
+  try {
+    for (auto& [key, value] :
+         CaseConfig::from_string(checkpointed_case, "the checkpoint", {}).flattened())
+      before[key] = value;
+  } catch (const ConfigError& e) {
+    return std::string("its case.toml does not parse (") + e.what() + ")";
+  }
+  for (auto& [key, value] : config.flattened()) now[key] = value;
+  for (const auto& [key, value] : now) {
+    if (outside_the_results.count(key)) continue;
+    const auto found = before.find(key);
+    const std::string was = found == before.end() ? "(absent)" : found->second;
+    if (was != value) return key + " = " + was + " in the checkpoint, " + value + " now";
+  }
+  for (const auto& [key, value] : before) {
+    if (!outside_the_results.count(key) && !now.count(key))
+      return key + " = " + value + " in the checkpoint, absent now";
+  }
+  return "";
+}
+
+void start_checkpoints(const fs::path& out_dir, const std::string& resolved_case) {
+  remove_checkpoints(out_dir);
+  const fs::path folder = checkpoint_folder(out_dir);
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error) throw std::runtime_error("cannot make " + folder.string() + ": " + error.message());
+  write_file_atomically(folder / "case.toml", resolved_case);
+}
+
+void save_member_checkpoint(const fs::path& out_dir, int member, const MemberCheckpoint& c,
+                            MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const md::EngineState& e = c.state.engine;
+  const long long step = c.state.so_far.steps;
+  const auto write_member = [&] {
+    if (rank != 0) return;
+    write_replacing(member_file(out_dir, member), [&](const fs::path& f) { write_state(f, c); });
+    // The member file names this step's blocks now: the earlier ones go.
+    std::error_code ignored;
+    const std::string prefix = block_prefix(member), own = prefix + std::to_string(step) + ".";
+    for (const auto& entry : fs::directory_iterator(checkpoint_folder(out_dir), ignored)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) == 0 && name.rfind(own, 0) != 0) fs::remove(entry, ignored);
+    }
+  };
+  if (e.particle_blocks == 1) return write_member();  // rank 0 alone
+  // Every rank its block first, under a name of this step; then rank 0 the member file.
+  md::on_every_rank(comm, [&] {
+    write_replacing(block_file(out_dir, member, step, rank),
+                    [&](const fs::path& f) { write_particles(f, e); });
+  });
+  md::on_every_rank(comm, write_member);
+}
+
+std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, int members,
+                                                      int rank, int ranks) {
+  H5::Exception::dontPrint();
+  std::vector<MemberCheckpoint> loaded;
+  for (int m = 0; m < members; ++m) {
+    const fs::path file = member_file(out_dir, m);
+    if (!fs::exists(file)) break;
+    try {
+      loaded.push_back(read_state(file, out_dir, m, rank, ranks));
+    } catch (const H5::Exception& e) {
+      throw std::runtime_error("cannot read the checkpoint " + file.string() + ": " +
+                               e.getDetailMsg());
+    } catch (const std::exception& e) {
+      throw std::runtime_error("cannot read the checkpoint " + file.string() + ": " + e.what());
+    }
+    if (!loaded.back().finished) break;
+  }
+  return loaded;
+}
+
+void remove_checkpoints(const fs::path& out_dir) {
+  std::error_code ignored;
+  fs::remove_all(checkpoint_folder(out_dir), ignored);
+}
+
+}  // namespace granvv::app

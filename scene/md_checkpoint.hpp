@@ -1,0 +1,66 @@
+#pragma once
+// Checkpoints of a case's particle part (docs/outputs.md, "Checkpoints and resume"). They live in
+// DIR/.granvv-checkpoint/ beside the outputs, outside the staging folder, so that they outlast a
+// killed or interrupted run:
+//   case.toml          the resolved case they belong to; a resume must resolve to the same text
+//   member_<m>.h5      ensemble member m: its finished result, or the state its run last saved
+//                      (md_bridge/md_run.hpp MdRunState), each file replaced whole by a rename
+//   member_<m>.step<S>.rank<k>.h5  under MPI, rank k's block of the particles of member m's
+//                      state at step S (EngineState::particle_blocks > 1), written by rank k
+//   particles*.h5      the members' H5MD particle files while the particle part runs
+// Rank 0 alone writes the member files; every rank reads them, and its own block file.
+#include <mpi.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/case_config.hpp"
+#include "md_bridge/md_run.hpp"
+
+namespace granvv::app {
+
+// The checkpoint folder of an output folder.
+std::filesystem::path checkpoint_folder(const std::filesystem::path& out_dir);
+
+// The resolved case of the checkpoints in out_dir, if there are any.
+std::optional<std::string> checkpointed_case(const std::filesystem::path& out_dir);
+
+// "" if the checkpointed case (its case.toml text) and config resolve to the same run, keys
+// that do not change results (md.checkpoint_interval, hydro.progress_seconds) aside; else the
+// first key that differs, with both values.
+std::string checkpointed_case_difference(const std::string& checkpointed_case,
+                                         const CaseConfig& config);
+
+// Removes any earlier checkpoints and starts a folder for resolved_case. Throws
+// std::runtime_error if it cannot be written.
+void start_checkpoints(const std::filesystem::path& out_dir, const std::string& resolved_case);
+
+// One member's checkpoint: finished (state.so_far is its result, state.engine the engine's
+// totals after it, without particles) or in progress (the run's state at a sample).
+struct MemberCheckpoint {
+  bool finished = false;
+  md::MdRunState state;
+  double particle_part_wall_seconds = 0.0;  // wall time of the particle part when it was saved
+};
+
+// Writes member m's checkpoint, replacing the previous one only once it is complete on the disk.
+// Called on every rank of comm: with the particles in blocks (particle_blocks > 1) it is
+// collective, each rank writing its block file before rank 0 writes the member file that names
+// them; otherwise rank 0 alone writes. Throws std::runtime_error (on every rank that took part;
+// the previous checkpoint then stays).
+void save_member_checkpoint(const std::filesystem::path& out_dir, int member,
+                            const MemberCheckpoint& checkpoint, MPI_Comm comm = MPI_COMM_SELF);
+
+// The members' checkpoints in order, up to the first member without one, as rank `rank` of
+// `ranks` restores them (its own block of particles saved in blocks). Throws std::runtime_error
+// naming the file if one cannot be read, or if it was saved in blocks over another number of
+// ranks.
+std::vector<MemberCheckpoint> load_member_checkpoints(const std::filesystem::path& out_dir,
+                                                      int members, int rank = 0, int ranks = 1);
+
+// Removes the checkpoint folder (after a run whose results are complete); never throws.
+void remove_checkpoints(const std::filesystem::path& out_dir);
+
+}  // namespace granvv::app

@@ -1,0 +1,376 @@
+#include "scene/md_scene.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "scene/work_estimate.hpp"
+#include "compare/ensemble_fields.hpp"
+#include "md_bridge/box_modes.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
+#include "md_bridge/particle_sampler.hpp"
+
+namespace granvv::app {
+
+namespace {
+
+// The largest value of f on 4096 cell centres of [-1/2, 1/2).
+double sampled_maximum(const std::function<double(double)>& f) {
+  double largest = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4096; ++i) largest = std::max(largest, f(-0.5 + (i + 0.5) / 4096));
+  return largest;
+}
+
+// The key behind a scene_problem (md_bridge/particle_scene.hpp), checked in its order: the
+// particle count comes from md.particles or, when that is 0, from physics.K; r from
+// md.restitution or, when that is 0, from physics.q.
+std::string scene_problem_key(const CaseConfig& c, const md::ParticleScene& sc) {
+  if (!(sc.area_fraction > 0.0 && sc.area_fraction <= 0.5)) return "md.area_fraction";
+  if (!(sc.box_width >= 4.0)) return "md.box_width";
+  if (!(sc.restitution > 0.0 && sc.restitution <= 1.0)) {
+    return c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q";
+  }
+  return c.integer("md.particles") > 0
+             ? "md.particles"
+             : key_to_blame(c, {"physics.K", "md.box_width", "md.area_fraction"});
+}
+
+[[noreturn]] void refuse(const CaseConfig& c, const std::string& key, const std::string& why) {
+  const std::string origin = c.origin(key);
+  throw ConfigError((origin == "default" ? c.source() : origin) + ": " + key + " = " +
+                    abbreviated(format_value(c.value(key)), 80) + ": " + why);
+}
+
+// Work and output of the particle run. The work is the engine's own estimate, in its own unit
+// (md_bridge/particle_work.hpp: LAMMPS atom-steps from the contact, event-driven collisions from
+// Enskog's collision frequency); a sample interval below the engine's time step (LAMMPS only)
+// is refused.
+void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
+  const auto& spec = s.spec;
+  const auto& sc = spec.scene;
+  const double n = double(sc.particles);
+  md::ParticleWorkQuestion question;
+  question.scene = sc;
+  question.settings = s.engine_settings;
+  question.hottest_temperature = std::max(1.0, sampled_maximum(spec.fields.T));
+  question.fastest_flow =
+      std::max(0.0, sampled_maximum([&](double x) {
+                 return std::abs(spec.fields.v(x));  // x and t both scale with Lx: v is the same
+               }));
+  question.t_end = spec.t_end;
+  question.haff_time = t_haff;
+  question.ensemble = s.ensemble;
+  md::ParticleWorkEstimate work;
+  try {
+    work = md::estimate_particle_work(s.engine, question);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
+  const double dt0 = work.first_step;
+  // The work and memory of one rank: LAMMPS divides both over the ranks, the serial
+  // event-driven engine runs whole on every rank.
+  ParticleRunEstimate& e = s.estimate;
+  e.ranks = launched_ranks();
+  const double share = work.divides_over_ranks ? 1.0 / e.ranks : 1.0;
+  e.work_per_rank = work.work * share;
+  e.unit = work.unit;
+  e.rate = work.rate;
+  e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
+                     (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n * share : 0.0);
+  e.machine_bytes = machine_memory_bytes();
+  const std::vector<std::string> size_keys = {"md.particles", "physics.K", "md.box_width",
+                                              "md.area_fraction"};
+  if (e.machine_bytes > 0.0 && e.bytes_per_rank > e.machine_bytes) {
+    const std::string key = key_to_blame(c, size_keys);
+    refuse(c, key,
+           "the particle run (" + std::to_string(sc.particles) +
+               " particles) needs more memory "
+               "than this machine has: " +
+               e.describe() + "; run on more ranks or a smaller scene");
+  }
+  if (!c.boolean("md.accept_long_run")) {
+    refuse_beyond(c, work.keys, e.work_per_rank, work.limit, work.unit,
+                  "the particle run (" + std::to_string(s.ensemble) + " x " +
+                      std::to_string(sc.particles) + " disks" +
+                      (dt0 > 0.0 ? ", first step ~" + format_real(dt0) : std::string()) + ", " +
+                      e.describe() + ")",
+                  "set md.accept_long_run = true to run it anyway");
+  }
+  // A sample interval below the step skips requested times: the run passes a snapshot time
+  // within one step without stopping at it (the last one is lost). The step at the end of the
+  // run, where adaptive stiffness has made it longest, is the one that counts.
+  const double dt_end = work.last_step;
+  if (dt0 > 0.0 && spec.sample_interval < dt_end) {
+    refuse(c, "md.sample_interval",
+           "below the particle time step (about " + format_real(dt0) + " at the start, " +
+               format_real(dt_end) +
+               " at md.t_end, MD time); the run cannot sample more often than every step");
+  }
+  const double segments =
+      s.ensemble * (spec.t_end / spec.sample_interval +
+                    (spec.snapshot_interval > 0 ? spec.t_end / spec.snapshot_interval : 0.0) +
+                    double(spec.output_times.size()));
+  refuse_beyond(c, {"md.sample_interval", "md.snapshot_interval", "md.t_end", "md.ensemble"},
+                segments, kMaxSegments, "segments",
+                "the particle run in segments (one per sample, frame or snapshot, each with its "
+                "engine log)");
+  const double frame_bytes =
+      spec.snapshot_interval > 0
+          ? s.ensemble * (spec.t_end / spec.snapshot_interval + 1.0) * n * 6.0 * sizeof(double)
+          : 0.0;
+  const double series_bytes = s.ensemble * (spec.t_end / spec.sample_interval + 1.0) * 16.0 *
+                              sizeof(double) * (spec.snapshot_interval > 0 ? 6.0 : 1.0);
+  refuse_beyond(c, {"md.snapshot_interval", "md.sample_interval", "md.t_end", "md.ensemble"},
+                frame_bytes + series_bytes, kMaxOutputBytes, "bytes",
+                "the particle output (H5MD frames and time series)");
+}
+
+}  // namespace
+
+SignalToNoise initial_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  const double bin = sc.box_length / scene.spec.bins;
+  SignalToNoise s;
+  s.noise = 1.0 / std::sqrt(sc.number_density() * sc.box_width * bin);
+  s.signal =
+      std::max(0.0, sampled_maximum([&](double x) { return std::abs(scene.spec.fields.v(x)); }));
+  return s;
+}
+
+SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  const int k_max = sc.unstable_modes();
+  SignalToNoise s;
+  s.noise = k_max > 0 ? k_max * std::sqrt(k_max / double(sc.particles))
+                      : std::numeric_limits<double>::quiet_NaN();
+  const auto& dv = scene.spec.fields.dv;
+  s.signal = dv ? std::max(0.0, sampled_maximum([&](double x) { return std::abs(dv(x)); })) : 0.0;
+  return s;
+}
+
+SignalToNoise initial_mode_signal_to_noise(const MdScene& scene) {
+  const auto& sc = scene.spec.scene;
+  constexpr int kSamples = 4096;  // midpoint rule: exact for a single mode
+  double b1 = 0.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double x = -0.5 + (i + 0.5) / kSamples;
+    b1 += 2.0 * scene.spec.fields.v(x) * std::sin(2.0 * M_PI * x) / kSamples;
+  }
+  return {std::abs(b1), std::sqrt(2.0 / double(sc.particles))};
+}
+
+std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
+  if (!c.boolean("md.enabled")) return std::nullopt;
+  MdScene s;
+  auto& spec = s.spec;
+  const double r_key = c.real("md.restitution");
+  const double r = r_key > 0.0 ? r_key : 1.0 - 2.0 * hydro.physics.q;
+  const double phi = c.real("md.area_fraction"), ly = c.real("md.box_width");
+  const long long n = c.int_value("md.particles");
+  spec.scene = n > 0 ? md::scene_from_particles(n, phi, ly, r)
+                     : md::scene_from_scaled(hydro.physics.K, 0.5 * (1.0 - r), phi, ly);
+  const std::string problem = md::scene_problem(spec.scene);
+  if (!problem.empty()) {
+    refuse(c, scene_problem_key(c, spec.scene), "impossible particle scene: " + problem);
+  }
+  spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
+  spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
+  spec.t_end = c.real("md.t_end");
+  spec.sample_interval = c.real("md.sample_interval");
+  spec.output_times = c.reals("md.output_times");
+  spec.bins = c.int_value("md.bins");
+  spec.kernel = c.string("md.kernel");
+  spec.kernel_width = c.real("md.kernel_width");
+  s.ensemble = c.int_value("md.ensemble");
+  s.engine = c.string("md.engine");
+  s.checkpoint_interval = c.real("md.checkpoint_interval");
+  s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
+  for (const KeySpec& key : case_schema()) {
+    if (key.section() != "md") continue;
+    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
+    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
+    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
+  }
+  spec.snapshot_interval = c.real("md.snapshot_interval");
+  const double t_haff = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
+  if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
+    const double t0 = t_haff;
+    if (!(std::isfinite(t0) && t0 > 0.0)) {
+      refuse(c, c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q",
+             "the gas does not cool (r = " + format_real(spec.scene.restitution) +
+                 "), so its Haff time is infinite and md.time_unit = \"haff\" " + "(from " +
+                 c.origin("md.time_unit") + ") gives no end time; use r < 1 or " +
+                 "md.time_unit = \"md\"");
+    }
+    spec.t_end *= t0;
+    spec.sample_interval *= t0;
+    for (double& t : spec.output_times) t *= t0;
+  }
+  if (spec.sample_interval > spec.t_end) {
+    throw ConfigError(c.origin("md.sample_interval") +
+                      ": md.sample_interval = " + format_real(spec.sample_interval) +
+                      ": must be <= md.t_end = " + format_real(spec.t_end));
+  }
+  // What the coarse-grainer and the sampler would refuse, refused here with the key named.
+  try {
+    md::CoarseGrainer check({-0.5 * spec.scene.box_length, spec.scene.box_length, 0.0,
+                             spec.scene.box_width, spec.bins, spec.kernel, spec.kernel_width});
+    (void)check;
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.kernel_width") +
+                      ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
+  }
+  // The densest point of the initial profile must still take disks without overlap.
+  const double n_max = std::max(0.0, sampled_maximum(spec.fields.n));
+  if (n_max * spec.scene.area_fraction > 0.5) {
+    throw ConfigError(c.origin("md.area_fraction") +
+                      ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
+                      ": the initial density peak n/n0 = " + format_real(n_max) +
+                      " would need a local area fraction above 0.5");
+  }
+  check_particle_work(c, s, t_haff);
+  if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units
+    check_hydro_work(c, hydro, spec.t_end / spec.scene.box_length, "md.t_end");
+  }
+  try {
+    (void)make_engine(s, "");
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
+  return s;
+}
+
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir) {
+  md::ParticleEngineSetup setup;
+  setup.scene = scene.spec.scene;
+  setup.settings = scene.engine_settings;
+  setup.log_dir = log_dir;
+  return md::make_particle_engine(scene.engine, setup);
+}
+
+MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
+                       const std::function<void(int, const md::MdProgress&)>& progress,
+                       const MdCheckpointing* checkpointing) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  MdOutcome out;
+  const auto& sc = scene.spec.scene;
+  out.engine = engine.name();
+  out.collision_rule = engine.check_collision_rule();
+  if (std::abs(out.collision_rule.restitution - sc.restitution) > 1e-3) {
+    std::ostringstream why;
+    why << "restitution " << out.collision_rule.restitution << " ("
+        << out.collision_rule.description << ") misses md.restitution = " << sc.restitution
+        << " by more than 1e-3; refusing the run";
+    throw std::runtime_error(why.str());
+  }
+  const bool saving = checkpointing && !checkpointing->out_dir.empty();
+  const std::vector<MemberCheckpoint> none;
+  const auto& resume = checkpointing ? checkpointing->resume : none;
+  double wall_before = 0.0;  // the particle part of the runs this one continues
+  auto last_save = clock::now();
+  auto since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  auto save = [&](int member, MemberCheckpoint c) {
+    c.particle_part_wall_seconds = wall_before + since(start);
+    try {
+      save_member_checkpoint(checkpointing->out_dir, member, c, engine.comm());
+      ++out.checkpoints_written;
+    } catch (const std::exception& e) {
+      if (checkpointing->warn) checkpointing->warn(e.what());
+    }
+    last_save = clock::now();
+  };
+  std::vector<std::vector<double>> ts, Ts, fractions, pressures, pressure_errors, zs, z_errors;
+  for (int m = 0; m < scene.ensemble; ++m) {
+    const MemberCheckpoint* earlier =
+        m < static_cast<int>(resume.size()) ? &resume[std::size_t(m)] : nullptr;
+    if (earlier) wall_before = earlier->particle_part_wall_seconds;
+    if (earlier && earlier->finished) {  // its result as it was, and the engine's totals after it
+      engine.restore_state(earlier->state.engine);
+      out.runs.push_back(earlier->state.so_far);
+      ++out.members_restored;
+    } else {
+      md::MdRunSpec spec = scene.spec;
+      spec.seed += static_cast<std::uint64_t>(m);
+      if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
+        const std::filesystem::path p = spec.h5md_path;
+        spec.h5md_path = (p.parent_path() /
+                          (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
+                             .string();
+      }
+      md::MdCheckpoints checkpoints;
+      if (saving) {
+        checkpoints.due = [&] {
+          return (checkpointing->interval_seconds > 0.0 &&
+                  since(last_save) >= checkpointing->interval_seconds) ||
+                 (checkpointing->stop_requested && checkpointing->stop_requested());
+        };
+        checkpoints.save = [&](const md::MdRunState& state) { save(m, {false, state, 0.0}); };
+      }
+      if (earlier) {
+        checkpoints.resume_from = &earlier->state;
+        out.resumed_member = m;
+        out.resumed_t = earlier->state.t;
+      }
+      out.runs.push_back(md::run_md(
+          spec, engine,
+          [&](const md::MdProgress& p) {
+            if (progress) progress(m, p);
+          },
+          checkpoints));
+      if (saving) {  // the finished member, and the engine's totals after it
+        md::MdRunState done;
+        done.engine = engine.save_state(false);
+        done.so_far = out.runs.back();
+        int rank = 0;
+        MPI_Comm_rank(engine.comm(), &rank);
+        if (rank == 0) save(m, {true, done, 0.0});
+      }
+    }
+    const md::MdSeries& series = out.runs.back().series;
+    ts.push_back(series.t);
+    Ts.push_back(series.T);
+    fractions.push_back(series.mode_energy_fraction);
+    std::vector<double> p, p_error, z, z_error;
+    for (std::size_t i = 0; i < series.pressure_xx.size(); ++i) {
+      p.push_back(0.5 * (series.pressure_xx[i] + series.pressure_yy[i]));
+      p_error.push_back(series.pressure_stderr[i]);
+      z.push_back(series.compressibility[i]);
+      z_error.push_back(series.pressure_stderr[i] * z.back() / p.back());
+    }
+    pressures.push_back(std::move(p));
+    pressure_errors.push_back(std::move(p_error));
+    zs.push_back(std::move(z));
+    z_errors.push_back(std::move(z_error));
+  }
+  out.pressure = compare::sample_average(pressures, pressure_errors);
+  out.compressibility = compare::sample_average(zs, z_errors);
+  out.mode_energy_fraction = compare::ensemble_statistics(fractions);
+  out.homogeneous = compare::homogeneous_window(ts.front(), out.mode_energy_fraction.mean,
+                                                scene.haff_mode_energy_fraction, scene.spec.t_end);
+  out.linear_mode_onset = md::linear_mode_onset_md(sc, scene.haff_mode_energy_fraction);
+  try {
+    out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, out.homogeneous.t_max);
+  } catch (const std::invalid_argument&) {  // too few samples, or no cooling: no fit (null)
+    out.haff.t0 = out.haff.t0_error = out.haff.T0 = std::nan("");
+  }
+  out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
+  out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
+  out.T = compare::ensemble_statistics(Ts);
+  std::vector<fields::FieldSeries> members;
+  for (const auto& run : out.runs) members.push_back(run.fields);
+  out.fields = compare::ensemble_field_series(members);
+  out.cost = engine.cost();
+  out.engine_details = engine.details();
+  out.wall_seconds = wall_before + since(start);
+  return out;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,111 @@
+#pragma once
+// A case's particle part: the [md] table read into a particle scene (docs/physics.md §4), the
+// particle engine it names (md_bridge/particle_engine.hpp) with its collision-rule check, an
+// ensemble of seeds, and the Haff fit against kinetic theory (dilute and with the Enskog
+// factor).
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/md_checkpoint.hpp"
+#include "scene/work_estimate.hpp"
+#include "compare/ensemble_statistics.hpp"
+#include "compare/haff_fit.hpp"
+#include "compare/haff_window.hpp"
+#include "compare/sample_average.hpp"
+#include "md_bridge/md_run.hpp"
+
+namespace granvv::app {
+
+struct MdScene {
+  md::MdRunSpec spec;                      // spec.seed is the first seed; member m uses seed + m
+  int ensemble = 0;                        // md.ensemble
+  std::string engine;                      // md.engine
+  double checkpoint_interval = 0.0;        // md.checkpoint_interval, wall seconds (0 = none)
+  double haff_mode_energy_fraction = 0.0;  // md.haff_mode_energy_fraction
+  // Every number and boolean of [md] by key: the engine reads the ones it understands.
+  md::EngineSettings engine_settings;
+  // The work, memory and wall time of one rank (md_bridge/particle_work.hpp).
+  ParticleRunEstimate estimate;
+};
+
+// Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot
+// run (scene_problem, settings the engine refuses, a profile too dense to place) before the
+// engine sees them.
+std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
+
+// The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir);
+
+// docs/physics.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
+// (n0 Ly l)^{-1/2} sqrt(T0/m), against the imposed signal, the largest initial flow speed.
+struct SignalToNoise {
+  double signal = 0.0, noise = 0.0;
+  double ratio() const { return signal / noise; }
+};
+SignalToNoise initial_signal_to_noise(const MdScene& scene);
+
+// docs/physics.md §8, the gradient form: the thermal noise of the velocity gradient on the scale
+// of the shortest unstable wavelength l = Lx / k_max (k_max = the scene's unstable modes),
+// (n0 Ly l)^{-1/2} / l in scaled units, against the imposed gradient max|v0'|: how strongly the
+// imposed flow, rather than the noise, seeds the clusters. 0 signal (ratio 0) without a smooth
+// imposed velocity, and NaN noise (ratio NaN) without unstable modes.
+SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene);
+
+// docs/physics.md §8, the mode form: the sin 2 pi x amplitude b1 = 2 <v sin 2 pi x> of the
+// imposed velocity against its thermal noise in N disks at T0, sqrt(2 T0 / (m N)): how clearly
+// the imposed mode as a whole, which averages over every bin, stands out.
+SignalToNoise initial_mode_signal_to_noise(const MdScene& scene);
+
+struct MdOutcome {
+  std::vector<md::MdRunResult> runs;
+  std::string engine;
+  md::CollisionRuleCheck collision_rule;
+  compare::HaffFit haff;
+  double haff_t0_theory = 0.0, haff_t0_theory_dilute = 0.0;
+  // The Haff fit's homogeneous window (compare/haff_window.hpp) from the ensemble's mean mode
+  // energy fraction, and the linear-theory onset (md_bridge/box_modes.hpp; +inf: none).
+  compare::EnsembleStatistics mode_energy_fraction;
+  compare::HomogeneousWindow homogeneous;
+  double linear_mode_onset = 0.0;
+  // The box's (P_xx + P_yy)/2 and P/(n T) averaged over the samples and the members
+  // (compare/sample_average.hpp).
+  compare::SampleAverage pressure, compressibility;
+  double wall_seconds = 0.0;
+  md::EngineCost cost;  // over every member
+  md::EngineDetails engine_details;
+  // Ensemble statistics of the temperature series (run 0's sample times), and the fields over
+  // the ensemble (compare/ensemble_fields.hpp; each member's own are in runs[m].fields).
+  compare::EnsembleStatistics T;
+  fields::FieldSeries fields;
+  // Checkpoints (scene/md_checkpoint.hpp): how many this run wrote, and where it resumed (member
+  // -1: it started anew). wall_seconds includes the particle part of the runs it continued.
+  int checkpoints_written = 0;
+  int resumed_member = -1;
+  double resumed_t = 0.0;
+  int members_restored = 0;  // finished members taken from the checkpoints
+};
+
+// Checkpoints of the particle part: into out_dir/.granvv-checkpoint every interval_seconds of
+// wall time, and when stop_requested() says so (a signal: the run then stops at its next safe
+// point with nothing lost). resume holds the checkpoints of an earlier run of the same case.
+struct MdCheckpointing {
+  std::filesystem::path out_dir;
+  double interval_seconds = 0.0;
+  std::function<bool()> stop_requested;
+  std::vector<MemberCheckpoint> resume;
+  std::function<void(const std::string&)> warn;  // a checkpoint that could not be written
+};
+
+// Throws std::runtime_error if the restitution the engine's collision rule really has misses
+// the target by more than 1e-3 (the run is refused).
+// With checkpointing null (or its out_dir empty) nothing is saved.
+MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
+                       const std::function<void(int member, const md::MdProgress&)>& progress,
+                       const MdCheckpointing* checkpointing = nullptr);
+
+}  // namespace granvv::app
