@@ -13,20 +13,13 @@
 #include <set>
 #include <thread>
 
+#include "app/output_folder.hpp"
+#include "app/report_command.hpp"
+#include "app/summary.hpp"
 #include "atlas/atlas_analysis.hpp"
 #include "atlas/atlas_particles.hpp"
 #include "atlas/atlas_power.hpp"
 #include "atlas/atlas_runs.hpp"
-#include "scene/atomic_file.hpp"
-#include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/interruption.hpp"
-#include "scene/json_numbers.hpp"
-#include "scene/md_scene.hpp"
-#include "models/model.hpp"
-#include "app/output_folder.hpp"
-#include "app/report_command.hpp"
-#include "app/summary.hpp"
 #include "atlas/detectable_error.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/stability_search.hpp"
@@ -34,6 +27,13 @@
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/closure.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
+#include "models/model.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/interruption.hpp"
+#include "scene/json_numbers.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

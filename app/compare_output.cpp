@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
-#include "scene/json_numbers.hpp"
 #include "app/md_output.hpp"
 #include "app/summary.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {

@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "app/atlas_command.hpp"
-#include "scene/case_catalog.hpp"
-#include "scene/case_config.hpp"
-#include "scene/md_checkpoint.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
+#include "scene/md_checkpoint.hpp"
 
 int main(int argc, char** argv) {
   using namespace granvv::app;

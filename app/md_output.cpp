@@ -4,11 +4,11 @@
 #include <cmath>
 #include <variant>
 
-#include "scene/json_numbers.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/enskog_factors.hpp"
 #include "hydro/haff.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {

@@ -17,8 +17,8 @@
 #include <regex>
 #include <sstream>
 
-#include "scene/atomic_file.hpp"
 #include "fields/hdf5_datasets.hpp"
+#include "scene/atomic_file.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

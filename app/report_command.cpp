@@ -4,9 +4,9 @@
 #include <iostream>
 #include <string>
 
+#include "app/output_folder.hpp"
 #include "scene/case_config.hpp"
 #include "scene/data_directory.hpp"
-#include "app/output_folder.hpp"
 
 namespace granvv::app {
 

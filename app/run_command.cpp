@@ -12,23 +12,23 @@
 #include <iostream>
 #include <optional>
 
-#include "scene/atomic_file.hpp"
-#include "scene/case_catalog.hpp"
-#include "scene/case_config.hpp"
 #include "app/compare_output.hpp"
-#include "models/compare_scene.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/initial_provenance.hpp"
-#include "scene/interruption.hpp"
-#include "scene/md_checkpoint.hpp"
 #include "app/md_output.hpp"
-#include "scene/md_scene.hpp"
 #include "app/mpi_ranks.hpp"
 #include "app/output_folder.hpp"
 #include "app/pressure_output.hpp"
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
+#include "models/compare_scene.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/initial_provenance.hpp"
+#include "scene/interruption.hpp"
+#include "scene/md_checkpoint.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <optional>
 #include <sstream>
 
-#include "scene/json_numbers.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_stability.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {

@@ -9,20 +9,20 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "scene/atomic_file.hpp"
-#include "scene/case_catalog.hpp"
-#include "scene/case_config.hpp"
-#include "models/compare_scene.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/interruption.hpp"
-#include "scene/json_numbers.hpp"
-#include "scene/md_checkpoint.hpp"
-#include "scene/md_scene.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/summary.hpp"
 #include "compare/cooling_sweep.hpp"
+#include "models/compare_scene.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_catalog.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/interruption.hpp"
+#include "scene/json_numbers.hpp"
+#include "scene/md_checkpoint.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <tuple>
 
-#include "scene/json_numbers.hpp"
 #include "atlas/particle_cost.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/relative_bias.hpp"
 #include "atlas/work_precision.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 using nlohmann::json;

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "scene/json_numbers.hpp"
 #include "atlas/detectable_error.hpp"
 #include "compare/side_by_side.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 using nlohmann::json;

@@ -9,19 +9,19 @@
 #include <nlohmann/json.hpp>
 #include <variant>
 
-#include "scene/atomic_file.hpp"
-#include "scene/case_config.hpp"
-#include "models/compare_scene.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/interruption.hpp"
-#include "scene/json_numbers.hpp"
-#include "scene/md_scene.hpp"
-#include "models/model.hpp"
 #include "atlas/work_precision.hpp"
 #include "compare/binned_energies.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/model_comparison.hpp"
 #include "hydro/validity_monitors.hpp"
+#include "models/compare_scene.hpp"
+#include "models/model.hpp"
+#include "scene/atomic_file.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/interruption.hpp"
+#include "scene/json_numbers.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

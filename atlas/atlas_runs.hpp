@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_catalog.hpp"
 #include "fields/model_result.hpp"
+#include "scene/case_catalog.hpp"
 
 namespace granvv::app {
 

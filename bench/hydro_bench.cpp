@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
 #include "hydro/integrator.hpp"
 #include "hydro/periodic_tridiagonal.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 
 namespace {
 

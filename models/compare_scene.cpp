@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "models/model.hpp"
 #include "compare/binned_energies.hpp"
 #include "compare/density_modes.hpp"
 #include "compare/ensemble_error_model.hpp"
@@ -22,6 +21,7 @@
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
+#include "models/model.hpp"
 
 namespace granvv::app {
 namespace {

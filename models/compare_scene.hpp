@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/md_scene.hpp"
 #include "compare/binned_fields.hpp"
 #include "compare/field_metrics.hpp"
 #include "compare/verdict.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 

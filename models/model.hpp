@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "scene/hydro_scene.hpp"
-#include "scene/md_scene.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "fields/model_result.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 

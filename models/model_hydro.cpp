@@ -1,10 +1,10 @@
 // The hydro as a model of the ladder (models/model.hpp).
 #include <cstdio>
 
-#include "models/model.hpp"
 #include "compare/binned_fields.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/haff.hpp"
+#include "models/model.hpp"
 
 namespace granvv::app {
 

@@ -2,11 +2,11 @@
 #include <chrono>
 #include <cmath>
 
-#include "models/model.hpp"
 #include "compare/binned_fields.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/inertia_crossing.hpp"
+#include "models/model.hpp"
 
 namespace granvv::app {
 namespace {

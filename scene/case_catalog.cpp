@@ -8,9 +8,9 @@
 #include <sstream>
 #include <system_error>
 
+#include "embedded_cases.hpp"
 #include "scene/case_config.hpp"
 #include "scene/data_directory.hpp"
-#include "embedded_cases.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

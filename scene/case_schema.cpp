@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <type_traits>
 
-#include "scene/case_config.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
+#include "scene/case_config.hpp"
 
 namespace granvv::app {
 

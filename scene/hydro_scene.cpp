@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "scene/work_estimate.hpp"
 #include "hydro/blowup_extrapolation.hpp"
 #include "hydro/cell_fields.hpp"
 #include "hydro/flow_by_inertia.hpp"
@@ -12,6 +11,7 @@
 #include "hydro/haff_deviation.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_stability.hpp"
+#include "scene/work_estimate.hpp"
 
 namespace granvv::app {
 

@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
 #include "fields/field_series.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/convergence_study.hpp"
@@ -13,6 +12,7 @@
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/singularity_analysis.hpp"
+#include "scene/case_config.hpp"
 
 namespace granvv::app {
 

@@ -10,10 +10,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "scene/atomic_file.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "md_bridge/every_rank.hpp"
+#include "scene/atomic_file.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
 #include "md_bridge/md_run.hpp"
+#include "scene/case_config.hpp"
 
 namespace granvv::app {
 

@@ -9,11 +9,11 @@
 #include <limits>
 #include <sstream>
 
-#include "scene/work_estimate.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
+#include "scene/work_estimate.hpp"
 
 namespace granvv::app {
 

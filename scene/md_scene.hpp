@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
-#include "scene/md_checkpoint.hpp"
-#include "scene/work_estimate.hpp"
 #include "compare/ensemble_statistics.hpp"
 #include "compare/haff_fit.hpp"
 #include "compare/haff_window.hpp"
 #include "compare/sample_average.hpp"
 #include "md_bridge/md_run.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
+#include "scene/md_checkpoint.hpp"
+#include "scene/work_estimate.hpp"
 
 namespace granvv::app {
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_schema.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
+#include "scene/case_schema.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::testing {

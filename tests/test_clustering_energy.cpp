@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "hydro/haff.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
-#include "hydro/haff.hpp"
 
 namespace granvv::app {
 namespace {

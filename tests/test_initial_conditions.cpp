@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/case_schema.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
+#include "scene/case_schema.hpp"
 
 namespace granvv::hydro {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
-#include "models/model.hpp"
 #include "compare/model_comparison.hpp"
+#include "models/model.hpp"
+#include "scene/case_config.hpp"
 
 namespace granvv::app {
 namespace {

@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
 #include "fields/field_series_file.hpp"
 #include "hydro/formula.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/periodic_interpolation.hpp"
 #include "hydro/profile_table.hpp"
+#include "scene/case_config.hpp"
+#include "scene/hydro_scene.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv {
