@@ -17,17 +17,17 @@
 #include "app/report_command.hpp"
 #include "app/summary.hpp"
 #include "atlas/atlas_analysis.hpp"
-#include "atlas/atlas_particles.hpp"
 #include "atlas/atlas_power.hpp"
 #include "atlas/atlas_runs.hpp"
+#include "atlas/dem_map.hpp"
 #include "atlas/detectable_error.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/stability_search.hpp"
 #include "atlas/work_precision.hpp"
 #include "fields/hdf5_datasets.hpp"
-#include "hydro/closure.hpp"
-#include "md_bridge/particle_engine_registry.hpp"
 #include "models/model.hpp"
+#include "models/model_family.hpp"
+#include "models/setting_run.hpp"
 #include "scene/atomic_file.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
@@ -42,27 +42,14 @@ using nlohmann::json;
 namespace {
 
 using atlas::kNoValue;
-// The default grid around the case's own setting (docs/atlas.md): cells times these, and these
-// factors on the step bounds. The finest corner is each hydro's converged reference.
-const std::vector<double> kCellFactors = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0};
-const std::vector<double> kStepFactors = {0.25, 0.5, 1.0, 2.0, 4.0};
 // Stability boundaries: the knob is pushed by this factor at most kPushes times from the case's
 // own setting, then the first failure is bisected kRefinements times on a log scale.
 constexpr int kPushes = 6, kRefinements = 2;
 // A run is over-resolved when its numerical error is below this fraction of its model error:
 // refining it further cannot bring it closer to the richest model.
 constexpr double kOverResolved = 0.1;
-// The particles' default grid (docs/atlas.md): the event-driven engine at these ensemble sizes,
-// LAMMPS at md.max_overlap and md.steps_per_contact times these (the schema refuses what lies
-// beyond its ranges, and the map shows those as refused).
-const std::vector<int> kEnsembles = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
-const std::vector<double> kOverlapFactors = {0.5, 1.0, 2.0, 5.0, 10.0};
-const std::vector<double> kContactStepFactors = {1.0 / 3.0, 0.5, 1.0, 2.0};
-// The ladder from the poorest model to the richest; a scene runs the ones that apply. The
-// event-driven hard disks are the paper's own model, and the richest.
-const std::vector<std::string> kLadder = {"haff_ode",         "flow_by_inertia",
-                                          "hydro/dilute",     "hydro/enskog",
-                                          "particles/lammps", "particles/event_driven"};
+// The knob every ensemble family shares (models/particle_family.hpp): its size.
+constexpr const char* kEnsemble = "ensemble";
 
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> items;
@@ -118,79 +105,14 @@ struct LadderRung {
   std::string skipped;  // why it does not apply (empty: it runs)
 };
 
-// Every rung that applies; the Haff ODE runs on every scene, even where it cannot follow the
-// fields, because it costs microseconds and the atlas shows how far it is.
+// Every family, and why it does not apply; the Haff ODE runs on every scene, even where it
+// cannot follow the fields, because it costs microseconds and the atlas shows how far it is.
 std::vector<LadderRung> ladder_of(const AtlasScene& scene) {
   std::vector<LadderRung> rungs;
-  for (const auto& model : kLadder) {
-    LadderRung r{model, ""};
-    if (model == "flow_by_inertia" && !scene.has_inertia_reference) {
-      r.skipped = "the initial velocity has no flow-by-inertia reference";
-    }
-    if (model == "hydro/enskog" && !(scene.area_fraction > 0.0)) {
-      r.skipped = "needs physics.area_fraction > 0 (the area fraction of the disks)";
-    }
-    if (is_particles(model)) {
-      const auto engines = md::particle_engine_names();
-      if (!scene.particles) {
-        r.skipped = "md.enabled = false";
-      } else if (std::find(engines.begin(), engines.end(), model.substr(10)) == engines.end()) {
-        r.skipped = "this build has no particle engine \"" + model.substr(10) + "\"";
-      }
-    }
-    rungs.push_back(r);
+  for (const ModelFamily* family : model_families()) {
+    rungs.push_back({family->name(), family->not_applicable(scene).value_or("")});
   }
   return rungs;
-}
-
-struct Grid {
-  std::vector<int> cells;
-  std::vector<double> factors;
-  std::vector<int> ensembles;            // the event-driven engine's
-  std::vector<double> particle_factors;  // and its particle counts
-  std::vector<double> max_overlaps;
-  std::vector<int> steps_per_contacts;
-  std::vector<double> injected_errors;  // the comparison power's eps
-};
-
-Grid grid_of(const CaseConfig& c, const AtlasScene& scene) {
-  Grid g;
-  for (long long n : c.integers("atlas.cells")) g.cells.push_back(int(n));
-  g.factors = c.reals("atlas.step_factors");
-  if (g.cells.empty()) {
-    for (double f : kCellFactors) {
-      const int n = std::max(4, int(std::lround(scene.case_cells * f)));
-      if (g.cells.empty() || n > g.cells.back()) g.cells.push_back(n);
-    }
-  }
-  if (g.factors.empty()) g.factors = kStepFactors;
-  for (long long m : c.integers("atlas.ensembles")) g.ensembles.push_back(int(m));
-  if (g.ensembles.empty()) g.ensembles = kEnsembles;
-  g.particle_factors = c.reals("atlas.particle_factors");
-  g.max_overlaps = c.reals("atlas.max_overlaps");
-  if (g.max_overlaps.empty()) {
-    for (double f : kOverlapFactors) g.max_overlaps.push_back(scene.case_max_overlap * f);
-  }
-  for (long long k : c.integers("atlas.steps_per_contacts")) g.steps_per_contacts.push_back(int(k));
-  if (g.steps_per_contacts.empty()) {
-    for (double f : kContactStepFactors) {
-      const int k = int(std::lround(scene.case_steps_per_contact * f));
-      if (g.steps_per_contacts.empty() || k > g.steps_per_contacts.back()) {
-        g.steps_per_contacts.push_back(k);
-      }
-    }
-  }
-  g.injected_errors = c.reals("atlas.injected_errors");
-  if (g.injected_errors.empty()) g.injected_errors = atlas::default_injected_errors();
-  return g;
-}
-
-// A run's estimated wall seconds from the pilot (the case's own setting): the work is cells
-// times steps, and the steps grow as the cells where the sound limit binds and as 1/factor.
-double estimate(const AtlasSetting& s, const AtlasRun& pilot, int case_cells) {
-  if (!is_hydro(s.model)) return 0.0;
-  const double c = double(s.cells) / case_cells;
-  return std::max(pilot.cost.wall_seconds, 1e-3) * std::max(c * c, c) / s.step_factor;
 }
 
 json errors_json(const std::map<std::string, double>& e) {
@@ -238,8 +160,9 @@ class AtlasRunner {
     };
     // Particle runs call MPI (single-threaded) and are one engine each: on this thread, in turn.
     const bool serial =
-        jobs_ == 1 || std::any_of(settings.begin(), settings.end(),
-                                  [](const AtlasSetting& s) { return is_particles(s.model); });
+        jobs_ == 1 || std::any_of(settings.begin(), settings.end(), [](const AtlasSetting& s) {
+          return !model_family(s.model).runs_on_threads();
+        });
     if (serial) {
       work();
       return runs;
@@ -273,28 +196,25 @@ void write_atlas_h5(const fs::path& file, const std::vector<AtlasRun>& runs,
     H5::H5File f(tmp.string(), H5F_ACC_TRUNC);
     H5::Group g = f.createGroup("runs");
     std::vector<std::string> names, status;
-    std::vector<double> cells, factor, ensemble, particle_factor, overlap, spc, adaptive, wall,
-        work;
+    std::vector<double> wall, work;
+    std::map<std::string, std::vector<double>> knobs;  // every family's knobs, by name
+    const std::vector<KnobSpec> columns = all_knobs();
     for (const auto& r : runs) {
       names.push_back(r.setting.model), status.push_back(r.status);
-      cells.push_back(r.setting.cells), factor.push_back(r.setting.step_factor);
-      ensemble.push_back(r.setting.ensemble), overlap.push_back(r.setting.max_overlap);
-      particle_factor.push_back(r.setting.particle_factor);
-      spc.push_back(r.setting.steps_per_contact), adaptive.push_back(r.setting.adaptive_stiffness);
+      for (const KnobSpec& k : columns) {
+        const auto it = r.setting.knobs.find(k.name);
+        knobs[k.name].push_back(it == r.setting.knobs.end() ? k.absent : it->second);
+      }
       wall.push_back(r.cost.wall_seconds), work.push_back(r.cost.work);
     }
     h5::write_strings(g, "model", names);
     h5::write_strings(g, "status", status);
-    h5::write_vector(g, "cells", cells);
-    h5::write_vector(g, "step_factor", factor);
-    h5::write_vector(g, "ensemble", ensemble);
-    h5::write_vector(g, "particle_factor", particle_factor);
-    h5::write_vector(g, "max_overlap", overlap);
-    h5::write_vector(g, "steps_per_contact", spc);
-    h5::write_vector(g, "adaptive_stiffness", adaptive);
+    for (const KnobSpec& k : columns) h5::write_vector(g, k.name, knobs[k.name]);
     h5::write_vector(g, "wall_seconds", wall);
     h5::write_vector(g, "work", work);
-    h5::write_attribute(g, "missing", "NaN: the run does not give the observable; 0: no such knob");
+    h5::write_attribute(g, "missing",
+                        "NaN: the run does not give the observable; a knob the run's model does "
+                        "not have holds its neutral value (0, or 1 for a factor)");
     auto group = [&](const char* name, const std::vector<ObservableErrors>& errors,
                      bool reference_error) {
       H5::Group e = g.createGroup(name);
@@ -344,37 +264,40 @@ json skipped_for_budget(const AtlasSetting& s, double estimate, double share, do
 // thinned to every other value until its hydro runs fit, and skipped with the reason if even
 // two values do not.
 json comparison_power_within(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
-                             const std::string& reference_model, std::vector<double> epsilons,
+                             const ModelFamily& reference_family, std::vector<double> epsilons,
                              BudgetShares& budget, int jobs, AtlasRunner& runner,
                              double total_budget) {
+  // The hydro the case itself runs, at its own setting, takes the injected errors.
+  const ModelFamily* hydro = nullptr;
+  for (const ModelFamily* f : model_families()) {
+    if (f->kind() == FamilyKind::discretised && f->is_case_model(scene)) hydro = f;
+  }
   const AtlasRun* unperturbed = nullptr;
   std::vector<const AtlasRun*> particle_runs;
+  const AtlasSetting own_particles = reference_family.case_setting(scene);
   for (const auto& r : runs) {
-    if (r.setting.model == "hydro/" + scene.closure && r.setting.cells == scene.case_cells &&
-        r.setting.step_factor == 1.0) {
-      unperturbed = &r;
-    }
-    const bool own_contact = !is_lammps(reference_model) ||
-                             (r.setting.max_overlap == scene.case_max_overlap &&
-                              r.setting.steps_per_contact == scene.case_steps_per_contact &&
-                              r.setting.adaptive_stiffness == scene.case_adaptive_stiffness);
-    if (r.setting.model == reference_model && r.status == "ok" && r.fields && own_contact &&
-        r.setting.particle_factor == 1.0) {
+    if (hydro && r.setting == hydro->case_setting(scene)) unperturbed = &r;
+    // The reference's runs at the case's own setting but for the ensemble size.
+    const bool own_setting =
+        reference_family.with_knob(r.setting, kEnsemble, own_particles.knob(kEnsemble)) ==
+        own_particles;
+    if (r.setting.model == reference_family.name() && r.status == "ok" && r.fields && own_setting) {
       particle_runs.push_back(&r);
     }
   }
   std::stable_sort(particle_runs.begin(), particle_runs.end(),
                    [](const AtlasRun* a, const AtlasRun* b) {
-                     return a->setting.ensemble < b->setting.ensemble;
+                     return a->setting.knob(kEnsemble) < b->setting.knob(kEnsemble);
                    });
   const double share = budget.share();
   budget.done();
   if (!unperturbed || unperturbed->status != "ok") {
-    return {{"skipped", "the case's own hydro (hydro/" + scene.closure +
+    return {{"skipped", "the case's own hydro (" +
+                            (hydro ? hydro->name() : "closure " + scene.closure) +
                             ") did not finish, so there is nothing to inject errors into"}};
   }
   const double each = std::max(unperturbed->cost.wall_seconds, 1e-3);
-  const std::size_t per_eps = comparison_power_settings(scene, {1.0}).size();
+  const std::size_t per_eps = comparison_power_settings(*hydro, scene, {1.0}).size();
   auto estimate_of = [&](std::size_t n) { return each * double(per_eps * n) / jobs; };
   int thinned = 0;
   while (epsilons.size() > 2 && estimate_of(epsilons.size()) > share) {
@@ -389,11 +312,11 @@ json comparison_power_within(const AtlasScene& scene, const std::vector<AtlasRun
                             " s, would pass its share of the budget (" + format_real(share) +
                             " s of --budget " + format_real(total_budget) + ")"}};
   }
-  const std::vector<AtlasSetting> settings = comparison_power_settings(scene, epsilons);
+  const std::vector<AtlasSetting> settings = comparison_power_settings(*hydro, scene, epsilons);
   const std::vector<AtlasRun> hydro_runs =
       runner.run(settings, std::vector<double>(settings.size(), each));
   budget.spend(estimate_of(epsilons.size()));
-  json power = comparison_power(scene, *unperturbed, hydro_runs, particle_runs, epsilons);
+  json power = comparison_power(*hydro, scene, *unperturbed, hydro_runs, particle_runs, epsilons);
   power["thinned"] = thinned;  // times the default grid was halved to fit the budget
   return power;
 }
@@ -406,7 +329,7 @@ int atlas_command(const AtlasOptions& options) {
   AtlasScene scene;
   std::vector<std::string> observables;
   std::vector<LadderRung> ladder;
-  Grid grid;
+  std::vector<double> injected_errors;  // the comparison power's eps grid
   std::string initial_type;
   double stop_density = 0.0;
   try {
@@ -424,13 +347,14 @@ int atlas_command(const AtlasOptions& options) {
     }
     scene.source = locate_case(options.case_name);
     scene.sets = options.sets;
-    const CaseConfig config =
-        CaseConfig::from_string(scene.source.text, scene.source.origin, scene.sets);
-    HydroScene hydro = hydro_scene_from(config);
+    scene.config = std::make_shared<const CaseConfig>(
+        CaseConfig::from_string(scene.source.text, scene.source.origin, scene.sets));
+    const CaseConfig& config = *scene.config;
+    const HydroScene hydro = hydro_scene_from(config);
+    scene.case_hydro = std::make_shared<const HydroScene>(hydro);
     scene.name = config.name();
     scene.particles = config.boolean("md.enabled");
     scene.bins = config.int_value("atlas.bins");
-    scene.collapse_rule_limit = config.real("atlas.collapse_rule_limit");
     scene.case_cells = hydro.cells;
     scene.case_cfl = hydro.control.time_step.cfl;
     scene.case_dt_max = hydro.control.time_step.dt_max;
@@ -451,12 +375,6 @@ int atlas_command(const AtlasOptions& options) {
       }
       scene.bins = md_bins;
       const std::optional<MdScene> md = md_scene_from(config, hydro);
-      scene.case_ensemble = md->ensemble;
-      scene.case_box_width = config.real("md.box_width");
-      scene.case_particles = config.int_value("md.particles");
-      scene.case_max_overlap = config.real("md.max_overlap");
-      scene.case_steps_per_contact = config.int_value("md.steps_per_contact");
-      scene.case_adaptive_stiffness = config.boolean("md.adaptive_stiffness");
       scene.particle_count = md->spec.scene.particles;
       scene.md_t_end = md->spec.t_end;
       scene.md_t_haff =
@@ -472,16 +390,11 @@ int atlas_command(const AtlasOptions& options) {
     }
     observables = judged_observables(config, initial_type == "uniform", scene.particles,
                                      scene.crossing_levels);
-    grid = grid_of(config, scene);
+    injected_errors = config.reals("atlas.injected_errors");
+    if (injected_errors.empty()) injected_errors = atlas::default_injected_errors();
     ladder = ladder_of(scene);
     // The compared times: the hydro's own output times, or those of a particle scene.
-    AtlasSetting probe;
-    probe.model = "hydro/" + hydro.closure;
-    probe.cells = scene.case_cells;
-    probe.step_factor = 1.0;
-    const CaseConfig first = CaseConfig::from_string(scene.source.text, scene.source.origin,
-                                                     setting_overrides(scene, probe));
-    const HydroScene aligned = atlas_hydro_scene(first, scene);
+    const HydroScene aligned = atlas_hydro_scene(config, scene);
     scene.times = aligned.control.output_times;
     if (scene.times.empty()) scene.times.push_back(aligned.control.t_end);
   } catch (const ConfigError& e) {
@@ -508,141 +421,101 @@ int atlas_command(const AtlasOptions& options) {
     return interrupted_exit_code();
   };
 
-  // 2. The exact solutions, and the pilot: each hydro at the case's own setting.
+  // 2. The exact solutions, each one run; then the families with knobs: those whose runs go on
+  // threads (the hydro) planned together, then the others (the particles, which call MPI) in
+  // turn, the richest first.
   std::vector<AtlasRun> runs;
-  std::vector<std::string> hydro_models, particle_models;
+  std::vector<const ModelFamily*> threaded, in_turn;
   json skipped = json::array();
   for (const auto& rung : ladder) {
     if (!rung.skipped.empty()) continue;
-    if (is_hydro(rung.model)) {
-      hydro_models.push_back(rung.model);
-    } else if (is_particles(rung.model)) {
-      particle_models.insert(particle_models.begin(), rung.model);  // the hard disks first
+    const ModelFamily& family = model_family(rung.model);
+    if (family.kind() == FamilyKind::exact) {
+      runs.push_back(runner.run_one(family.pilot(scene)));
+    } else if (family.runs_on_threads()) {
+      threaded.push_back(&family);
     } else {
-      AtlasSetting s;
-      s.model = rung.model;
-      runs.push_back(runner.run_one(s));
+      in_turn.insert(in_turn.begin(), &family);
     }
   }
-  // The families that share the budget: each hydro, each particle engine and, in a particle
-  // scene, the comparison power.
-  BudgetShares budget(options.budget, int(hydro_models.size() + particle_models.size() +
-                                          (particle_models.empty() ? 0 : 1)));
-  std::vector<AtlasSetting> planned;
-  std::vector<double> estimates;
-  for (const auto& model : hydro_models) {
-    const double share = budget.share();
-    const AtlasRun pilot = runner.run_one(hydro_setting(model, scene.case_cells, 1.0));
-    runs.push_back(pilot);
+  // The families that share the budget: each of those, and in a particle scene the comparison
+  // power.
+  BudgetShares budget(options.budget,
+                      int(threaded.size() + in_turn.size() + (in_turn.empty() ? 0 : 1)));
+  // 3. Each family's grid within its share: the pilot first (its cost calibrates the estimates),
+  // then what the family plans first (its reference, its own contact), then the cheapest.
+  auto plan = [&](const ModelFamily& family, const AtlasRun& pilot, double share, int parallel,
+                  std::vector<AtlasSetting>& settings, std::vector<double>& estimates) {
     double planned_seconds = pilot.cost.wall_seconds;
-    // 3. The grid within the budget: the finest corner (the reference) first, then the cheapest.
-    std::vector<AtlasSetting> grid_settings;
-    for (int c : grid.cells) {
-      for (double f : grid.factors) {
-        if (c == scene.case_cells && f == 1.0) continue;
-        grid_settings.push_back(hydro_setting(model, c, f));
-      }
-    }
-    const AtlasSetting finest = hydro_setting(model, grid.cells.back(), grid.factors.front());
-    std::stable_sort(
-        grid_settings.begin(), grid_settings.end(),
-        [&](const AtlasSetting& a, const AtlasSetting& b) {
-          const bool fa = a.cells == finest.cells && a.step_factor == finest.step_factor;
-          const bool fb = b.cells == finest.cells && b.step_factor == finest.step_factor;
-          if (fa != fb) return fa;
-          return estimate(a, pilot, scene.case_cells) < estimate(b, pilot, scene.case_cells);
-        });
-    for (const auto& s : grid_settings) {
-      const double e = estimate(s, pilot, scene.case_cells);
-      if ((planned_seconds + e) / jobs > share) {
+    std::vector<AtlasSetting> grid = family.grid(scene);
+    std::stable_sort(grid.begin(), grid.end(), [&](const AtlasSetting& a, const AtlasSetting& b) {
+      const bool fa = family.plan_first(a, scene), fb = family.plan_first(b, scene);
+      if (fa != fb) return fa;
+      return family.estimate(a, pilot, scene) < family.estimate(b, pilot, scene);
+    });
+    for (const auto& s : grid) {
+      if (s == pilot.setting) continue;
+      const double e = family.estimate(s, pilot, scene);
+      if ((planned_seconds + e) / parallel > share) {
         skipped.push_back(skipped_for_budget(s, e, share, options.budget));
         continue;
       }
       planned_seconds += e;
-      planned.push_back(s);
+      settings.push_back(s);
       estimates.push_back(e);
     }
-    budget.spend(planned_seconds / jobs);
+    budget.spend(planned_seconds / parallel);
     budget.done();
-  }
+  };
   {
+    std::vector<AtlasSetting> planned;
+    std::vector<double> estimates;
+    for (const ModelFamily* family : threaded) {
+      const double share = budget.share();
+      runs.push_back(runner.run_one(family->pilot(scene)));
+      plan(*family, runs.back(), share, jobs, planned, estimates);
+    }
     auto more = runner.run(planned, estimates);
     runs.insert(runs.end(), more.begin(), more.end());
   }
   if (interruption_signal()) return interrupted();
-  // The particles, one engine at a time: each engine's pilot (the case's own setting at one
-  // ensemble member), then its grid from the case's own setting upward in cost, within its share.
-  for (const auto& model : particle_models) {
+  for (const ModelFamily* family : in_turn) {
     const double share = budget.share();
-    const AtlasRun pilot = runner.run_one(particle_pilot(scene, model));
+    const AtlasRun pilot = runner.run_one(family->pilot(scene));
     runs.push_back(pilot);
     if (interruption_signal()) return interrupted();
-    if (pilot.status == "refused") {  // the scene is not one this engine takes: no grid
+    if (pilot.status == "refused") {  // the scene is not one this family takes: no grid
       skipped.push_back(
           {{"setting", setting_json(pilot.setting)},
            {"reason", "the pilot was refused, so is every setting: " + pilot.reason}});
       budget.done();
       continue;
     }
-    double planned_seconds = pilot.cost.wall_seconds;
-    std::vector<AtlasSetting> grid_settings =
-        is_lammps(model)
-            ? lammps_grid(scene, grid.max_overlaps, grid.steps_per_contacts)
-            : event_driven_grid(grid.ensembles, grid.particle_factors, scene.case_ensemble);
-    auto own = [&](const AtlasSetting& s) {
-      return is_lammps(model) && s.max_overlap == scene.case_max_overlap &&
-             s.steps_per_contact == scene.case_steps_per_contact &&
-             s.adaptive_stiffness == scene.case_adaptive_stiffness;
-    };
-    std::stable_sort(grid_settings.begin(), grid_settings.end(),
-                     [&](const AtlasSetting& a, const AtlasSetting& b) {
-                       if (own(a) != own(b)) return own(a);
-                       return particle_estimate(a, pilot, scene) <
-                              particle_estimate(b, pilot, scene);
-                     });
-    std::vector<AtlasSetting> particle_plan;
-    std::vector<double> particle_estimates;
-    for (const auto& s : grid_settings) {
-      if (describe(s) == describe(pilot.setting)) continue;
-      const double e = particle_estimate(s, pilot, scene);
-      if (planned_seconds + e > share) {
-        skipped.push_back(skipped_for_budget(s, e, share, options.budget));
-        continue;
-      }
-      planned_seconds += e;
-      particle_plan.push_back(s);
-      particle_estimates.push_back(e);
-    }
-    budget.spend(planned_seconds);
-    budget.done();
-    auto more = runner.run(particle_plan, particle_estimates);
+    std::vector<AtlasSetting> planned;
+    std::vector<double> estimates;
+    plan(*family, pilot, share, 1, planned, estimates);
+    auto more = runner.run(planned, estimates);
     runs.insert(runs.end(), more.begin(), more.end());
     if (interruption_signal()) return interrupted();
   }
 
-  // 4. References: each model's finest run that finished; the richest model's is the reference
-  // of the model errors.
-  auto finest_of = [&](const std::string& model) -> const AtlasRun* {
+  // 4. References: each family's finest run that finished (of the case's own scene); the richest
+  // family's is the reference of the model errors.
+  auto finest_of = [&](const ModelFamily& family) -> const AtlasRun* {
     const AtlasRun* best = nullptr;
     for (const auto& r : runs) {
-      if (r.setting.model != model || r.status != "ok") continue;
-      // The reference keeps the case's particle count: other counts are another scene's size.
-      if (r.setting.particle_factor != 1.0) continue;
-      const bool finer =
-          !best || (is_particles(model) ? finer_particle_run(r.setting, best->setting)
-                                        : (r.setting.cells > best->setting.cells ||
-                                           (r.setting.cells == best->setting.cells &&
-                                            r.setting.step_factor < best->setting.step_factor)));
-      if (finer) best = &r;
+      if (r.setting.model != family.name() || r.status != "ok") continue;
+      if (!family.may_be_reference(r.setting)) continue;
+      if (!best || family.finer(r.setting, best->setting)) best = &r;
     }
     return best;
   };
   std::map<std::string, const AtlasRun*> own_reference;
   std::string richest;
   for (const auto& rung : ladder) {
-    if (!is_hydro(rung.model) && !is_particles(rung.model)) continue;
-    if (const AtlasRun* f = finest_of(rung.model))
-      own_reference[rung.model] = f, richest = rung.model;
+    const ModelFamily& family = model_family(rung.model);
+    if (family.kind() == FamilyKind::exact) continue;
+    if (const AtlasRun* f = finest_of(family)) own_reference[rung.model] = f, richest = rung.model;
   }
   if (richest.empty()) {
     std::cerr << "granvv: error: atlas: no hydro or particle run finished, so there is no "
@@ -650,7 +523,8 @@ int atlas_command(const AtlasOptions& options) {
     return 1;
   }
   const AtlasRun& reference = *own_reference[richest];
-  const bool particle_reference = is_particles(richest);
+  const ModelFamily& reference_family = model_family(richest);
+  const bool particle_reference = reference_family.kind() == FamilyKind::ensemble;
   // What the reference itself does not give (a density level the peak never reached, the
   // crossing times the particles do not report) cannot be judged: it is dropped from the
   // observables, and atlas.json says so.
@@ -671,13 +545,7 @@ int atlas_command(const AtlasOptions& options) {
   } else {
     for (const auto& r : runs) {
       if (r.setting.model != richest || r.status != "ok" || &r == &reference) continue;
-      const bool coarser_cells = r.setting.step_factor == reference.setting.step_factor &&
-                                 r.setting.cells < reference.setting.cells &&
-                                 2 * r.setting.cells >= reference.setting.cells;
-      const bool coarser_step = r.setting.cells == reference.setting.cells &&
-                                r.setting.step_factor > reference.setting.step_factor &&
-                                r.setting.step_factor <= 2 * reference.setting.step_factor;
-      if (!coarser_cells && !coarser_step) continue;
+      if (!reference_family.coarser_neighbour(r.setting, reference.setting)) continue;
       for (const auto& [k, v] : observable_errors(r, reference, observables)) {
         convergence[k] = std::max(convergence.count(k) ? convergence[k] : 0.0, v.error);
       }
@@ -688,7 +556,7 @@ int atlas_command(const AtlasOptions& options) {
   // against every run of the reference engine (its ensemble sizes are the particle cost axis).
   json power = nullptr;
   if (particle_reference) {
-    power = comparison_power_within(scene, runs, richest, grid.injected_errors, budget, jobs,
+    power = comparison_power_within(scene, runs, reference_family, injected_errors, budget, jobs,
                                     runner, options.budget);
     if (interruption_signal()) return interrupted();
   }
@@ -732,9 +600,7 @@ int atlas_command(const AtlasOptions& options) {
                        errors_json(reference_errors_of(model_error[candidate_run[*best]]))}};
     // The next rung up: the cheapest adequate run of a richer model, else the cheapest of the
     // next richer model that ran.
-    const auto rank = [](const std::string& m) {
-      return std::find(kLadder.begin(), kLadder.end(), m) - kLadder.begin();
-    };
+    const auto rank = [](const std::string& m) { return ladder_rank(m); };
     json next = nullptr;
     for (int pass = 0; pass < 2 && next.is_null(); ++pass) {
       const AtlasRun* pick = nullptr;
@@ -772,60 +638,54 @@ int atlas_command(const AtlasOptions& options) {
     fronts[name] = atlas::pareto_front(cost, error);
   }
 
-  // 6. Stability boundaries of each hydro around the case's own setting. A run's state against
-  // its own finest run is worked out once: from its numerical error for a grid run, on arrival
-  // for a probe.
+  // 6. Stability boundaries of each family with knobs to push, around the case's own setting.
+  // A run's state against its own finest run is worked out once: from its numerical error for a
+  // grid run, on arrival for a probe.
   json stability = json::array();
-  for (const auto& model : hydro_models) {
-    if (!own_reference.count(model)) continue;
-    const AtlasRun& ref = *own_reference[model];
+  for (const ModelFamily* family : threaded) {
+    if (family->stability_pushes().empty() || !own_reference.count(family->name())) continue;
+    const AtlasRun& ref = *own_reference[family->name()];
     auto classify = [&](const AtlasRun& r, const ObservableErrors& errors) -> std::string {
       if (r.status != "ok") return r.status;
       return largest(errors_of(errors)) > options.tolerance ? "error_above_tolerance" : "";
     };
-    std::map<std::pair<int, double>, std::string> state;  // (cells, step factor) -> failure
+    std::map<std::map<std::string, double>, std::string> state;  // knobs -> failure
     std::vector<const AtlasRun*> drawn_runs;
     for (std::size_t i = 0; i < runs.size(); ++i) {
-      if (runs[i].setting.model != model) continue;
-      if (state
-              .emplace(std::pair{runs[i].setting.cells, runs[i].setting.step_factor},
-                       classify(runs[i], numerical[i]))
-              .second) {
+      if (runs[i].setting.model != family->name()) continue;
+      if (state.emplace(runs[i].setting.knobs, classify(runs[i], numerical[i])).second) {
         drawn_runs.push_back(&runs[i]);
       }
     }
     std::vector<AtlasRun> probed;  // the boundary searches' runs, drawn on the map too
-    probed.reserve(2 * (kPushes + kRefinements + 1));
+    probed.reserve(family->stability_pushes().size() * (kPushes + kRefinements + 1));
     auto state_of = [&](const AtlasSetting& s) {
-      const std::pair key{s.cells, s.step_factor};
-      if (const auto it = state.find(key); it != state.end()) return it->second;
+      if (const auto it = state.find(s.knobs); it != state.end()) return it->second;
       probed.push_back(runner.run_one(s));
       drawn_runs.push_back(&probed.back());
-      return state[key] =
+      return state[s.knobs] =
                  classify(probed.back(), observable_errors(probed.back(), ref, observables));
     };
+    const AtlasSetting own = family->case_setting(scene);
     json boundaries = json::array();
-    struct Push {
-      const char* knob;
-      double factor;
-    };
-    for (const Push push : {Push{"step_factor", 2.0}, Push{"cells", 0.5}}) {
-      const bool cells = std::string(push.knob) == "cells";
+    for (const KnobPush& push : family->stability_pushes()) {
+      bool integer = false;
+      for (const KnobSpec& k : family->knobs()) {
+        if (k.name == push.knob) integer = k.type == KnobSpec::Type::integer;
+      }
       auto probe = [&](double knob) {
         if (interruption_signal()) return std::string("interrupted");
-        return state_of(hydro_setting(model, cells ? int(std::lround(knob)) : scene.case_cells,
-                                      cells ? 1.0 : knob));
+        return state_of(family->with_knob(own, push.knob, integer ? std::round(knob) : knob));
       };
-      const double start_knob = cells ? scene.case_cells : 1.0;
-      if (!state_of(hydro_setting(model, scene.case_cells, 1.0)).empty()) {
+      if (!state_of(own).empty()) {
         boundaries.push_back({{"knob", push.knob},
                               {"note",
                                "the case's own setting already fails against the "
                                "finest run; no boundary searched"}});
         continue;
       }
-      const atlas::StabilityBoundary b =
-          atlas::find_stability_boundary(start_knob, push.factor, kPushes, kRefinements, probe);
+      const atlas::StabilityBoundary b = atlas::find_stability_boundary(
+          own.knob(push.knob), push.factor, kPushes, kRefinements, probe);
       boundaries.push_back({{"knob", push.knob},
                             {"direction", push.factor > 1 ? "up" : "down"},
                             {"stable", b.stable},
@@ -833,25 +693,35 @@ int atlas_command(const AtlasOptions& options) {
                             {"failure", b.failure.empty() ? json(nullptr) : json(b.failure)},
                             {"probes", b.probes}});
     }
+    auto knobs_json = [&](const AtlasSetting& s) {
+      json j = family->setting_json(s);
+      j.erase("model");
+      return j;
+    };
     json grid_points = json::array();
     for (const AtlasRun* r : drawn_runs) {
-      const std::string& c = state.at({r->setting.cells, r->setting.step_factor});
-      grid_points.push_back({{"cells", r->setting.cells},
-                             {"step_factor", r->setting.step_factor},
-                             {"state", c.empty() ? "ok" : c}});
+      const std::string& c = state.at(r->setting.knobs);
+      json point = knobs_json(r->setting);
+      point["state"] = c.empty() ? "ok" : c;
+      grid_points.push_back(point);
     }
-    stability.push_back({{"model", model},
-                         {"default", {{"cells", scene.case_cells}, {"step_factor", 1.0}}},
+    stability.push_back({{"model", family->name()},
+                         {"default", knobs_json(own)},
                          {"grid", grid_points},
                          {"boundaries", boundaries}});
   }
-  // The DEM's stability and bias map against the hard disks.
+  // The DEM's stability and bias map of each family with contact knobs, against the richest
+  // ensemble family without them (the hard disks).
   json dem = nullptr;
-  if (std::find(particle_models.begin(), particle_models.end(), "particles/lammps") !=
-      particle_models.end()) {
-    const auto hard = own_reference.find("particles/event_driven");
-    dem = dem_map(scene, runs, model_error, observables,
-                  hard == own_reference.end() ? nullptr : hard->second, scene.t0_theory,
+  for (const ModelFamily* family : in_turn) {
+    if (!family->has_contact_map()) continue;
+    const AtlasRun* hard = nullptr;
+    for (const ModelFamily* other : in_turn) {  // richest first
+      if (!hard && !other->has_contact_map() && own_reference.count(other->name())) {
+        hard = own_reference[other->name()];
+      }
+    }
+    dem = dem_map(*family, scene, runs, model_error, observables, hard, scene.t0_theory,
                   options.tolerance, scene.sigmas);
   }
 
@@ -916,7 +786,7 @@ int atlas_command(const AtlasOptions& options) {
                 {"over_resolved", r.setting.model != richest && std::isfinite(num) &&
                                       std::isfinite(mod) && num < kOverResolved * mod},
                 {"pareto", pareto}});
-    if (is_particles(r.setting.model) && r.status == "ok") {
+    if (model_family(r.setting.model).kind() == FamilyKind::ensemble && r.status == "ok") {
       json sc = json::object();
       for (const auto& [k, v] : r.scalars) {
         sc[k] = {
@@ -929,9 +799,11 @@ int atlas_command(const AtlasOptions& options) {
   }
   json ladder_rows = json::array();
   for (const auto& rung : ladder) {
+    const ModelStyle style = model_family(rung.model).style();
     ladder_rows.push_back({{"model", rung.model},
                            {"runs", rung.skipped.empty()},
-                           {"reason", rung.skipped.empty() ? json(nullptr) : json(rung.skipped)}});
+                           {"reason", rung.skipped.empty() ? json(nullptr) : json(rung.skipped)},
+                           {"style", {{"color", style.color}, {"marker", style.marker}}}});
   }
   bool converged = true;
   for (const auto& [k, v] : convergence) converged &= v <= options.tolerance;

@@ -45,22 +45,14 @@ atlas::JudgedHydro judge(const AtlasScene& scene, const AtlasRun& hydro, const A
 
 }  // namespace
 
-const std::vector<std::string>& injected_error_keys() {
-  static const std::vector<std::string> keys = {"viscosity_factor", "conductivity_factor",
-                                                "cooling_factor"};
-  return keys;
-}
-
-std::vector<AtlasSetting> comparison_power_settings(const AtlasScene& scene,
+std::vector<AtlasSetting> comparison_power_settings(const ModelFamily& hydro,
+                                                    const AtlasScene& scene,
                                                     const std::vector<double>& epsilons) {
   std::vector<AtlasSetting> settings;
-  for (const auto& key : injected_error_keys()) {
+  for (const auto& key : hydro.injected_error_keys()) {
     for (const Direction d : kDirections) {
       for (double eps : epsilons) {
-        AtlasSetting s;
-        s.model = "hydro/" + scene.closure;
-        s.cells = scene.case_cells;
-        s.step_factor = 1.0;
+        AtlasSetting s = hydro.case_setting(scene);
         s.injected = key;
         s.injected_factor = injected_factor(eps, d.sign);
         settings.push_back(s);
@@ -70,8 +62,8 @@ std::vector<AtlasSetting> comparison_power_settings(const AtlasScene& scene,
   return settings;
 }
 
-json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
-                      const std::vector<AtlasRun>& hydro_runs,
+json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
+                      const AtlasRun& unperturbed, const std::vector<AtlasRun>& hydro_runs,
                       const std::vector<const AtlasRun*>& particle_runs,
                       const std::vector<double>& epsilons) {
   auto find_run = [&](const std::string& key, double factor) -> const AtlasRun* {
@@ -85,7 +77,7 @@ json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
     compare::Disagreement base_kind = compare::Disagreement::none;
     const atlas::JudgedHydro base = judge(scene, unperturbed, *p, &base_kind);
     json detectable = json::object(), verdicts = json::object();
-    for (const auto& key : injected_error_keys()) {
+    for (const auto& key : hydro.injected_error_keys()) {
       for (const Direction d : kDirections) {
         std::vector<bool> caught, finished;
         json marks = json::array();
@@ -115,7 +107,7 @@ json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
          {"verdicts", verdicts}});
   }
   return {{"hydro", setting_json(unperturbed.setting)},
-          {"keys", injected_error_keys()},
+          {"keys", hydro.injected_error_keys()},
           {"epsilons", epsilons},
           {"directions", {"up: the coefficient times (1 + eps)", "down: divided by (1 + eps)"}},
           {"signal_to_noise", number_or_null(scene.signal_to_noise)},

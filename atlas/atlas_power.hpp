@@ -11,22 +11,23 @@
 #include <vector>
 
 #include "atlas/atlas_runs.hpp"
+#include "models/model_family.hpp"
 
 namespace granvv::app {
 
-// The case keys (without "hydro.") of the injected errors, in the order the atlas gives them.
-const std::vector<std::string>& injected_error_keys();
-
-// The hydro runs of the comparison power: the case's own closure, cells and step factor 1 with
-// one key at (1 + eps)^direction, direction +1 and -1, for every key and eps.
-std::vector<AtlasSetting> comparison_power_settings(const AtlasScene& scene,
+// The hydro runs of the comparison power: the case's own setting of the family that takes the
+// injected errors (ModelFamily::is_case_model) with one key at (1 + eps)^direction,
+// direction +1 and -1, for every key and eps.
+std::vector<AtlasSetting> comparison_power_settings(const ModelFamily& hydro,
+                                                    const AtlasScene& scene,
                                                     const std::vector<double>& epsilons);
 
 // atlas.json `comparison_power`: the unperturbed hydro's judgement against each particle run,
 // and for each particle run, key and direction the verdict of every eps and the smallest eps
 // caught (null: none up to the largest that finished). `hydro_runs` holds the runs of
 // comparison_power_settings (any order; a missing or failed one counts as not finished).
-nlohmann::json comparison_power(const AtlasScene& scene, const AtlasRun& unperturbed,
+nlohmann::json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
+                                const AtlasRun& unperturbed,
                                 const std::vector<AtlasRun>& hydro_runs,
                                 const std::vector<const AtlasRun*>& particle_runs,
                                 const std::vector<double>& epsilons);

@@ -1,27 +1,16 @@
 #include "atlas/atlas_runs.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <functional>
 #include <nlohmann/json.hpp>
-#include <variant>
 
 #include "atlas/work_precision.hpp"
-#include "compare/binned_energies.hpp"
-#include "compare/ensemble_statistics.hpp"
-#include "compare/model_comparison.hpp"
-#include "hydro/validity_monitors.hpp"
-#include "models/compare_scene.hpp"
-#include "models/model.hpp"
+#include "models/model_family.hpp"
 #include "scene/atomic_file.hpp"
 #include "scene/case_config.hpp"
-#include "scene/hydro_scene.hpp"
 #include "scene/interruption.hpp"
 #include "scene/json_numbers.hpp"
-#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
@@ -64,193 +53,7 @@ std::string text_hash(const std::string& text) {
 
 }  // namespace
 
-AtlasSetting hydro_setting(const std::string& model, int cells, double step_factor) {
-  AtlasSetting s;
-  s.model = model;
-  s.cells = cells;
-  s.step_factor = step_factor;
-  return s;
-}
-
-bool is_hydro(const std::string& model) {
-  return model.rfind("hydro/", 0) == 0;
-}
-bool is_particles(const std::string& model) {
-  return model.rfind("particles/", 0) == 0;
-}
-bool is_lammps(const std::string& model) {
-  return model == "particles/lammps";
-}
-
-HydroScene atlas_hydro_scene(const CaseConfig& config, const AtlasScene& scene) {
-  HydroScene hydro = hydro_scene_from(config);
-  hydro.convergence_cells.clear();
-  if (scene.particles) {
-    const auto md = md_scene_from(config, hydro);
-    fields::FieldSeries times;  // align_hydro_with_md reads only the snapshots' times
-    for (double t : config.reals("md.output_times")) {
-      fields::FieldSnapshot s;
-      s.t = t;
-      times.snapshots.push_back(s);
-    }
-    align_hydro_with_md(hydro, md->spec.scene, config.real("md.t_end"), times);
-  }
-  return hydro;
-}
-
 namespace {
-
-// How a hydro run ended, in the atlas's failure names (atlas/atlas_runs.hpp).
-std::string hydro_status(const HydroOutcome& out) {
-  const auto& run = out.run;
-  switch (run.status) {
-    case hydro::RunStatus::completed:
-      return "ok";
-    case hydro::RunStatus::singularity:
-      return run.stop_reason.find("min_cell_width") != std::string::npos ? "unresolved_singularity"
-                                                                         : "ok";
-    case hydro::RunStatus::closure_limit:
-      return "closure_limit";
-    case hydro::RunStatus::failed:
-      if (run.stop_reason.find("admissible") != std::string::npos) return "inadmissible_step";
-      if (run.stop_reason.find("non-finite") != std::string::npos) return "non_finite";
-      return "step_underflow";
-  }
-  return "failed";
-}
-
-// The compared times as a series without fields, to pair a model's snapshots with.
-fields::FieldSeries compared_times(const AtlasScene& scene) {
-  fields::FieldSeries times;
-  for (double t : scene.times) {
-    fields::FieldSnapshot s;
-    s.t = t;
-    times.snapshots.push_back(s);
-  }
-  return times;
-}
-
-compare::EnergiesPerParticle energies(const fields::FieldSnapshot& s) {
-  fields::FieldSnapshot full = s;  // flow by inertia has no T, a 1D hydro may have no v_y
-  if (full.T.empty()) full.T.assign(full.n.size(), 0.0);
-  if (full.v_y.empty()) full.v_y.assign(full.n.size(), 0.0);
-  return compare::box_energies(full);
-}
-
-// The run's compared times, energies, fields and scalars from a model's result.
-void take_result(const AtlasScene& scene, const fields::ModelResult& r, AtlasRun& run) {
-  run.cost = r.cost;
-  for (const auto& o : r.observables) {
-    run.scalars[o.name] = o.value;
-    run.scalar_errors[o.name] = o.standard_error;
-  }
-  if (!r.fields) return;
-  fields::FieldSeries kept = fields::FieldSeries::on_bins(-0.5, 1.0, scene.bins);
-  for (const auto& [i, j] : compare::common_snapshots(compared_times(scene), *r.fields)) {
-    const fields::FieldSnapshot& s = r.fields->snapshots[j];
-    const compare::EnergiesPerParticle e = energies(s);
-    run.times.push_back(scene.times[i]);
-    run.thermal.push_back(s.T.empty() ? kNoValue : e.thermal);
-    run.flow.push_back(e.flow);
-    run.thermal_error.push_back(kNoValue);
-    run.flow_error.push_back(kNoValue);
-    kept.snapshots.push_back(s);
-  }
-  run.fields = std::move(kept);
-}
-
-// The ensemble standard errors of the box energies at the kept times: the scatter of the
-// members' own box energies (each member's snapshot j is the mean's snapshot j,
-// compare/ensemble_fields.hpp). Energies per particle are the same in MD and scaled units.
-void take_energy_errors(const AtlasScene& scene, const fields::ModelResult& r,
-                        const MdOutcome& outcome, AtlasRun& run) {
-  if (!r.fields) return;
-  std::size_t k = 0;
-  for (const auto& [i, j] : compare::common_snapshots(compared_times(scene), *r.fields)) {
-    (void)i;
-    std::vector<std::vector<double>> thermal, flow;
-    for (const auto& member : outcome.runs) {
-      if (j >= member.fields.snapshots.size()) continue;
-      const compare::EnergiesPerParticle e = energies(member.fields.snapshots[j]);
-      thermal.push_back({e.thermal});
-      flow.push_back({e.flow});
-    }
-    if (!thermal.empty()) {
-      run.thermal_error[k] = compare::ensemble_statistics(thermal).standard_error[0];
-      run.flow_error[k] = compare::ensemble_statistics(flow).standard_error[0];
-    }
-    ++k;
-  }
-}
-
-// An engine without a contact virial in the box pressure (the event-driven one: its collisional
-// transfer is the series value collision_virial_pressure, the mean over the interval since the
-// previous sample) gets its pressure here, as the kinetic n0 T plus that transfer, with T the
-// mean of the interval's two ends (the gas cools during it): P/(n0 T0) and P/(n0 T) averaged
-// over each member's samples, then their mean and standard error over the members.
-void take_collisional_pressure(const MdScene& md, const MdOutcome& outcome, AtlasRun& run) {
-  if (std::isfinite(run.scalars["pressure"])) return;
-  const double n0 = md.spec.scene.number_density();
-  std::vector<std::vector<double>> pressure, compressibility;
-  for (const auto& member : outcome.runs) {
-    const auto& series = member.series;
-    const std::vector<double>* transfer = nullptr;
-    for (const auto& [name, values] : series.engine) {
-      if (name == "collision_virial_pressure") transfer = &values;
-    }
-    if (!transfer || transfer->size() != series.T.size() || series.T.size() < 2) return;
-    double p = 0.0, z = 0.0;
-    for (std::size_t s = 1; s < series.T.size(); ++s) {
-      const double T = 0.5 * (series.T[s - 1] + series.T[s]);
-      p += (n0 * T + (*transfer)[s]) / n0;
-      z += 1.0 + (*transfer)[s] / (n0 * T);
-    }
-    pressure.push_back({p / double(series.T.size() - 1)});
-    compressibility.push_back({z / double(series.T.size() - 1)});
-  }
-  const auto p = compare::ensemble_statistics(pressure);
-  const auto z = compare::ensemble_statistics(compressibility);
-  run.scalars["pressure"] = p.mean[0], run.scalar_errors["pressure"] = p.standard_error[0];
-  run.scalars["compressibility"] = z.mean[0];
-  run.scalar_errors["compressibility"] = z.standard_error[0];
-}
-
-// A deterministic model too quick to time in one run (below kShortestTimed) is run again, up to
-// kTimingRepeats times in all, and costs its fastest run: in a run of microseconds one context
-// switch or page fault would otherwise decide which model is the cheapest.
-constexpr double kShortestTimed = 1e-3;
-constexpr int kTimingRepeats = 50;
-void time_by_fastest(fields::ModelCost& cost, const std::function<fields::ModelCost()>& rerun) {
-  double spent = cost.wall_seconds;
-  for (int k = 1; k < kTimingRepeats && spent < kShortestTimed; ++k) {
-    const double again = rerun().wall_seconds;
-    spent += again;
-    cost.wall_seconds = std::min(cost.wall_seconds, again);
-  }
-}
-
-// The event-driven engine's share of collisions whose restitution its collapse rules changed
-// (md_bridge/hard_disk_collision.hpp), as its summary detail and as the atlas keeps it.
-constexpr const char* kCollapseRuleDetail = "collapse_rule.fraction_changed";
-constexpr const char* kCollapseRuleScalar = "collapse_rule_fraction_changed";
-
-// A finished particle run whose collapse rules changed more than the limit of its collisions
-// is no longer the hard-disk gas of constant r (docs/atlas.md): judged here, after the cache,
-// so that the limit (an [atlas] key) can change without running it again.
-void judge_collapse_rule(AtlasRun& run, double limit) {
-  const auto f = run.scalars.find(kCollapseRuleScalar);
-  if (run.status != "ok" || f == run.scalars.end() || !(f->second > limit)) return;
-  run.status = "collapse_rule_active";
-  run.reason = "the collapse rules changed the restitution of " + format_real(f->second) +
-               " of all collisions, above atlas.collapse_rule_limit = " + format_real(limit);
-}
-
-// A particle run that threw, in the atlas's failure names (atlas/atlas_runs.hpp).
-std::string particle_failure(const std::string& what) {
-  if (what.find("misses md.restitution") != std::string::npos) return "restitution_check_missed";
-  if (what.find("event-rate runaway") != std::string::npos) return "event_rate_runaway";
-  return "engine_failed";
-}
 
 // NaN is not JSON: absent values are null in the cache as in every output (docs/outputs.md).
 json numbers(const std::vector<double>& v) {
@@ -320,8 +123,8 @@ json run_json(const AtlasRun& r) {
 
 std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting) {
   if (!j.is_object() || j.value("format", 0) != kCacheFormat) return std::nullopt;
-  // A hydro cached before its monitors were kept is run again (hydro runs are cheap).
-  if (is_hydro(setting.model) && !j.contains("monitors")) return std::nullopt;
+  // A run cached before its monitors were kept is run again.
+  if (!j.contains("monitors")) return std::nullopt;
   AtlasRun r;
   r.setting = setting;
   r.status = j["status"].get<std::string>();
@@ -348,72 +151,15 @@ std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting
 
 }  // namespace
 
-std::string describe(const AtlasSetting& s) {
-  char knobs[160] = "";
-  if (is_hydro(s.model)) {
-    std::snprintf(knobs, sizeof knobs, " cells=%d step_factor=%g", s.cells, s.step_factor);
-  } else if (is_lammps(s.model)) {
-    std::snprintf(knobs, sizeof knobs,
-                  " ensemble=%d max_overlap=%g steps_per_contact=%d adaptive_stiffness=%s",
-                  s.ensemble, s.max_overlap, s.steps_per_contact,
-                  s.adaptive_stiffness ? "true" : "false");
-  } else if (is_particles(s.model)) {
-    std::snprintf(knobs, sizeof knobs, " ensemble=%d", s.ensemble);
-  }
-  std::string text = s.model + knobs;
-  if (s.particle_factor != 1.0) text += " particle_factor=" + format_real(s.particle_factor);
-  if (!s.injected.empty()) text += " " + s.injected + "=" + format_real(s.injected_factor);
-  return text;
-}
-
-json setting_json(const AtlasSetting& s) {
-  json j = {{"model", s.model}};
-  if (is_hydro(s.model)) j["cells"] = s.cells, j["step_factor"] = s.step_factor;
-  if (is_particles(s.model)) j["ensemble"] = s.ensemble;
-  if (is_particles(s.model) && !is_lammps(s.model)) j["particle_factor"] = s.particle_factor;
-  if (is_lammps(s.model)) {
-    j["max_overlap"] = s.max_overlap;
-    j["steps_per_contact"] = s.steps_per_contact;
-    j["adaptive_stiffness"] = s.adaptive_stiffness;
-  }
-  if (!s.injected.empty()) j[s.injected] = s.injected_factor;
-  return j;
-}
-
 std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& s) {
   std::vector<std::string> sets = scene.sets;
-  if (is_hydro(s.model)) {
-    sets.push_back("hydro.closure=" + toml_quoted(s.model.substr(6)));
-    sets.push_back("hydro.cells=" + std::to_string(s.cells));
-    sets.push_back("hydro.cfl=" + format_real(scene.case_cfl * s.step_factor));
-    sets.push_back("hydro.dt_max=" + format_real(scene.case_dt_max * s.step_factor));
-    sets.push_back("hydro.max_compression=" +
-                   format_real(scene.case_max_compression * s.step_factor));
-    if (!s.injected.empty()) {
-      sets.push_back("hydro." + s.injected + "=" + format_real(s.injected_factor));
-    }
-  } else if (is_particles(s.model)) {
-    sets.push_back("md.engine=" + toml_quoted(s.model.substr(10)));
-    sets.push_back("md.ensemble=" + std::to_string(s.ensemble));
-    if (s.particle_factor != 1.0) {
-      sets.push_back("md.box_width=" + format_real(scene.case_box_width * s.particle_factor));
-      if (scene.case_particles > 0) {
-        sets.push_back("md.particles=" + std::to_string(std::llround(double(scene.case_particles) *
-                                                                     s.particle_factor)));
-      }
-    }
-    if (is_lammps(s.model)) {
-      sets.push_back("md.max_overlap=" + format_real(s.max_overlap));
-      sets.push_back("md.steps_per_contact=" + std::to_string(s.steps_per_contact));
-      sets.push_back(std::string("md.adaptive_stiffness=") +
-                     (s.adaptive_stiffness ? "true" : "false"));
-    }
-  }
+  for (auto& set : model_family(s.model).overrides(scene, s)) sets.push_back(std::move(set));
   return sets;
 }
 
 AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
                            const fs::path& cache_dir) {
+  const ModelFamily& family = model_family(setting.model);
   AtlasRun run;
   run.setting = setting;
   std::optional<CaseConfig> config;
@@ -436,7 +182,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
         json j;
         in >> j;
         if (auto cached = run_from_json(j, setting)) {
-          judge_collapse_rule(*cached, scene.collapse_rule_limit);
+          family.judge(scene, *cached);
           return *cached;
         }
       } catch (const std::exception&) {
@@ -445,58 +191,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     }
   }
   try {
-    if (is_particles(setting.model)) {
-      const std::optional<MdScene> md = md_scene_from(*config, hydro_scene_from(*config));
-      const auto engine = make_engine(*md, "");
-      // A signal stops the run at its next sample (scene/interruption.hpp).
-      ParticleModel model(*md, *engine, [](int, const md::MdProgress&) { stop_if_interrupted(); });
-      fields::ModelResult r = model.run();
-      // A soft-contact engine reaches a compared time to within its time step (the largest,
-      // at the end of a run with adaptive stiffness): its snapshot stands for that time.
-      const double slack = md->spec.scene.scaled_time(engine->time_resolution());
-      for (auto& snap : r.fields->snapshots) {
-        for (double t : scene.times) {
-          if (std::abs(snap.t - t) <= slack) snap.t = t;
-        }
-      }
-      take_result(scene, r, run);
-      take_energy_errors(scene, r, model.outcome(), run);
-      take_collisional_pressure(*md, model.outcome(), run);
-      for (const auto& d : model.outcome().engine_details) {
-        if (d.key == kCollapseRuleDetail && std::holds_alternative<double>(d.value))
-          run.scalars[kCollapseRuleScalar] = std::get<double>(d.value);
-      }
-      run.status = "ok";
-    } else {
-      const HydroScene hydro = atlas_hydro_scene(*config, scene);
-      if (is_hydro(setting.model)) {
-        HydroModel model(hydro, scene.bins);
-        const fields::ModelResult r = model.run();
-        run.status = hydro_status(model.outcome());
-        run.reason = model.outcome().run.stop_reason;
-        run.rejected_steps = model.outcome().run.rejected_steps;
-        for (const auto& d : hydro::monitor_definitions()) {
-          const auto& crossing = model.outcome().run.validity.first_crossing[int(d.monitor)];
-          if (crossing) run.monitor_crossings[d.name] = crossing->time;
-        }
-        take_result(scene, r, run);
-        time_by_fastest(run.cost, [&] { return HydroModel(hydro, scene.bins).run().cost; });
-      } else if (setting.model == "haff_ode") {
-        auto haff = [&] { return make_haff_model(hydro.physics, scene.times, scene.bins)->run(); };
-        take_result(scene, haff(), run);
-        time_by_fastest(run.cost, [&] { return haff().cost; });
-        run.status = "ok";
-      } else {
-        auto inertia = [&] {
-          return make_inertia_model(hydro.initial, hydro.physics, scene.times, scene.bins,
-                                    scene.crossing_levels)
-              ->run();
-        };
-        take_result(scene, inertia(), run);
-        time_by_fastest(run.cost, [&] { return inertia().cost; });
-        run.status = "ok";
-      }
-    }
+    family.run(scene, *config, run);
   } catch (const ConfigError& e) {
     run.status = "refused";
     run.reason = e.what();
@@ -505,15 +200,9 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     run.status = "interrupted";
     run.reason = e.what();
     return run;
-  } catch (const std::runtime_error& e) {  // the particle engine failed: kept, it is an outcome
-    if (!is_particles(setting.model)) throw;
-    run = AtlasRun{};
-    run.setting = setting;
-    run.status = particle_failure(e.what());
-    run.reason = e.what();
   }
   write_file_atomically(cache_file, run_json(run).dump() + "\n");
-  judge_collapse_rule(run, scene.collapse_rule_limit);
+  family.judge(scene, run);
   return run;
 }
 

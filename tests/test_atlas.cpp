@@ -11,12 +11,12 @@
 #include <string>
 
 #include "atlas/detectable_error.hpp"
-#include "atlas/particle_cost.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/relative_bias.hpp"
 #include "atlas/stability_search.hpp"
 #include "atlas/work_precision.hpp"
 #include "hydro/inertia_crossing.hpp"
+#include "models/particle_cost.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::testing {

@@ -466,6 +466,15 @@ class AtlasRun:
         """The models that ran, in ladder order."""
         return [rung["model"] for rung in self.atlas("ladder") or [] if rung.get("runs")]
 
+    def model_style(self, model):
+        """The (colour, marker) the model's family declares (atlas.json ladder[].style); black
+        crosses for a model the ladder does not list (an atlas.json written before styles were)."""
+        for rung in self.atlas("ladder") or []:
+            style = rung.get("style") if rung.get("model") == model else None
+            if isinstance(style, dict) and style.get("color") and style.get("marker"):
+                return style["color"], style["marker"]
+        return "k", "x"
+
 
 def is_atlas_folder(outdir):
     """An atlas folder holds atlas.json and no results.h5."""

@@ -13,14 +13,7 @@ from .data import Skip
 from .formatting import fmt
 from .registry import Drawn, figure
 
-MODEL_STYLE = {"haff_ode": ("C2", "s"), "flow_by_inertia": ("C1", "D"), "hydro/dilute": ("C0", "o"),
-               "hydro/enskog": ("C3", "^"), "particles/lammps": ("C4", "v"),
-               "particles/event_driven": ("C5", "P")}
 STATE_COLOR = {"ok": "C2", "error_above_tolerance": "C1", "t0_bias_above_tolerance": "C3", "refused": "0.6"}
-
-
-def style_of(model):
-    return MODEL_STYLE.get(model, ("k", "x"))
 
 
 def model_error(run, name):
@@ -55,7 +48,7 @@ def fig_work_precision(run):
                    for r in runs if r.get("model") == model and model_error(r, name)]
             if not pts:
                 continue
-            c, m = style_of(model)
+            c, m = run.model_style(model)
             w, e, front = (np.array(v) for v in zip(*pts))
             ax.scatter(w, e, color=c, marker=m, s=18, label=model, zorder=3)
             ax.scatter(w[front], e[front], facecolors="none", edgecolors="k", s=70, lw=0.9, zorder=4)
@@ -159,7 +152,7 @@ def fig_timeline(run):
         ok = e <= tol
         ax.scatter(t[ok], np.full(ok.sum(), i), color="C2", s=60, marker="s")
         ax.scatter(t[~ok], np.full((~ok).sum(), i), color="C3", s=60, marker="x")
-        c, m = style_of(r["model"])
+        c, m = run.model_style(r["model"])
         ax2.semilogy(t, np.where(e > 0, e, np.nan), marker=m, color=c, label=r["model"])
         for name, when in sorted((r.get("monitors") or {}).items(), key=lambda kv: kv[1]):
             ax.scatter([when], [i], color="k", marker="|", s=260, zorder=4)

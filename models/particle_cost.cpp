@@ -1,4 +1,4 @@
-#include "atlas/particle_cost.hpp"
+#include "models/particle_cost.hpp"
 
 #include <cmath>
 

@@ -1,10 +1,9 @@
-#include "atlas/atlas_particles.hpp"
+#include "atlas/dem_map.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 
-#include "atlas/particle_cost.hpp"
 #include "atlas/recommendation.hpp"
 #include "atlas/relative_bias.hpp"
 #include "atlas/work_precision.hpp"
@@ -15,8 +14,15 @@ using nlohmann::json;
 
 namespace {
 
-atlas::ContactKnobs knobs_of(const AtlasSetting& s) {
-  return {s.ensemble, s.max_overlap, s.steps_per_contact, s.adaptive_stiffness};
+// A run's contact: its knobs other than the ensemble size, in the map's order.
+std::tuple<double, double, double> contact_of(const AtlasSetting& s) {
+  return {s.knob("max_overlap"), s.knob("steps_per_contact"), s.knob("adaptive_stiffness")};
+}
+json contact_json(const ModelFamily& family, const AtlasSetting& s) {
+  json j = family.setting_json(s);
+  j.erase("model");
+  j.erase("ensemble");
+  return j;
 }
 
 double scalar(const AtlasRun& r, const std::string& name, bool error = false) {
@@ -38,92 +44,26 @@ void put_bias(json& point, const std::string& key, const AtlasRun& run, const At
 
 }  // namespace
 
-std::vector<AtlasSetting> event_driven_grid(const std::vector<int>& ensembles,
-                                            const std::vector<double>& particle_factors,
-                                            int case_ensemble) {
-  std::vector<AtlasSetting> grid;
-  auto add = [&](int m, double f) {
-    AtlasSetting s;
-    s.model = "particles/event_driven";
-    s.ensemble = m;
-    s.particle_factor = f;
-    grid.push_back(s);
-  };
-  for (int m : ensembles) add(m, 1.0);
-  for (double f : particle_factors) {
-    if (f != 1.0) add(case_ensemble, f);
-  }
-  return grid;
-}
-
-std::vector<AtlasSetting> lammps_grid(const AtlasScene& scene,
-                                      const std::vector<double>& max_overlaps,
-                                      const std::vector<int>& steps_per_contacts) {
-  std::vector<AtlasSetting> grid;
-  auto add = [&](double overlap, int spc, bool adaptive) {
-    AtlasSetting s;
-    s.model = "particles/lammps";
-    s.ensemble = scene.case_ensemble;
-    s.max_overlap = overlap;
-    s.steps_per_contact = spc;
-    s.adaptive_stiffness = adaptive;
-    grid.push_back(s);
-  };
-  for (double overlap : max_overlaps) {
-    for (int spc : steps_per_contacts) add(overlap, spc, scene.case_adaptive_stiffness);
-  }
-  for (double overlap : max_overlaps) {
-    add(overlap, scene.case_steps_per_contact, !scene.case_adaptive_stiffness);
-  }
-  return grid;
-}
-
-AtlasSetting particle_pilot(const AtlasScene& scene, const std::string& model) {
-  AtlasSetting s;
-  s.model = model;
-  s.ensemble = 1;
-  if (is_lammps(model)) {
-    s.max_overlap = scene.case_max_overlap;
-    s.steps_per_contact = scene.case_steps_per_contact;
-    s.adaptive_stiffness = scene.case_adaptive_stiffness;
-  }
-  return s;
-}
-
-double particle_estimate(const AtlasSetting& s, const AtlasRun& pilot, const AtlasScene& scene) {
-  const double wall = std::max(pilot.cost.wall_seconds, 1e-3);
-  // The hard disks' work is their collisions: proportional to members times particles.
-  if (!is_lammps(s.model)) {
-    return wall * double(s.ensemble) * s.particle_factor /
-           (std::max(1, pilot.setting.ensemble) * pilot.setting.particle_factor);
-  }
-  return wall * atlas::dem_work_ratio(knobs_of(s), knobs_of(pilot.setting), scene.md_t_end,
-                                      scene.md_t_haff);
-}
-
-bool finer_particle_run(const AtlasSetting& a, const AtlasSetting& b) {
-  // Tuples compare in order: larger ensemble, smaller overlap, more steps, fixed stiffness.
-  return std::make_tuple(a.ensemble, -a.max_overlap, a.steps_per_contact, !a.adaptive_stiffness) >
-         std::make_tuple(b.ensemble, -b.max_overlap, b.steps_per_contact, !b.adaptive_stiffness);
-}
-
-json dem_map(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
+json dem_map(const ModelFamily& family, const AtlasScene& scene, const std::vector<AtlasRun>& runs,
              const std::vector<ObservableErrors>& model_error,
              const std::vector<std::string>& observables, const AtlasRun* hard_disks,
              double t0_theory, double tolerance, double sigmas) {
   // The largest ensemble at each contact setting.
-  std::map<std::tuple<double, int, bool>, std::size_t> chosen;
+  std::map<std::tuple<double, double, double>, std::size_t> chosen;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const AtlasSetting& s = runs[i].setting;
-    if (!is_lammps(s.model) || runs[i].status == "refused" || runs[i].status == "interrupted") {
+    if (s.model != family.name() || runs[i].status == "refused" ||
+        runs[i].status == "interrupted") {
       continue;
     }
-    const auto key = std::make_tuple(s.max_overlap, s.steps_per_contact, s.adaptive_stiffness);
+    const auto key = contact_of(s);
     const auto it = chosen.find(key);
-    if (it == chosen.end() || s.ensemble > runs[it->second].setting.ensemble) chosen[key] = i;
+    if (it == chosen.end() || s.knob("ensemble") > runs[it->second].setting.knob("ensemble")) {
+      chosen[key] = i;
+    }
   }
   json points = json::array();
-  std::map<std::tuple<double, int, bool>, std::string> state_at;
+  std::map<std::tuple<double, double, double>, std::string> state_at;
   for (const auto& [key, i] : chosen) {
     const AtlasRun& r = runs[i];
     std::string state = r.status;
@@ -143,18 +83,16 @@ json dem_map(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
       }
     }
     state_at[key] = state;
-    json p = {{"max_overlap", r.setting.max_overlap},
-              {"steps_per_contact", r.setting.steps_per_contact},
-              {"adaptive_stiffness", r.setting.adaptive_stiffness},
-              {"ensemble", r.setting.ensemble},
-              {"state", state},
+    json p = family.setting_json(r.setting);
+    p.erase("model");
+    p.update({{"state", state},
               {"wall_seconds", r.cost.wall_seconds},
               {"work", r.cost.work},
               {"work_unit", r.cost.work_unit},
               {"haff_t0", number_or_null(scalar(r, "haff_t0"))},
               {"haff_t0_error", number_or_null(scalar(r, "haff_t0", true))},
               {"compressibility", number_or_null(scalar(r, "compressibility"))},
-              {"compressibility_error", number_or_null(scalar(r, "compressibility", true))}};
+              {"compressibility_error", number_or_null(scalar(r, "compressibility", true))}});
     put_bias(p, "t0", r, hard_disks, "haff_t0");
     put_bias(p, "pressure", r, hard_disks, "pressure");
     put_bias(p, "compressibility", r, hard_disks, "compressibility");
@@ -166,8 +104,9 @@ json dem_map(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
   // Boundaries along each knob from the case's own contact: the grid's points in the push
   // direction, the last that is ok and the first that is not.
   json boundaries = json::array();
-  const auto own = std::make_tuple(scene.case_max_overlap, scene.case_steps_per_contact,
-                                   scene.case_adaptive_stiffness);
+  const AtlasSetting case_setting = family.case_setting(scene);
+  const auto own = contact_of(case_setting);
+  const auto [case_overlap, case_steps, case_adaptive] = own;
   for (const bool overlap_knob : {true, false}) {
     const char* knob = overlap_knob ? "max_overlap" : "steps_per_contact";
     json b = {{"knob", knob}, {"direction", overlap_knob ? "up" : "down"}};
@@ -180,13 +119,9 @@ json dem_map(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
       std::vector<std::pair<double, std::string>> line;  // knob value, state; push order
       for (const auto& [key, state] : state_at) {
         const auto& [ov, spc, adaptive] = key;
-        if (adaptive != scene.case_adaptive_stiffness) continue;
-        if (overlap_knob && spc == scene.case_steps_per_contact && ov >= scene.case_max_overlap) {
-          line.push_back({ov, state});
-        }
-        if (!overlap_knob && ov == scene.case_max_overlap && spc <= scene.case_steps_per_contact) {
-          line.push_back({double(spc), state});
-        }
+        if (adaptive != case_adaptive) continue;
+        if (overlap_knob && spc == case_steps && ov >= case_overlap) line.push_back({ov, state});
+        if (!overlap_knob && ov == case_overlap && spc <= case_steps) line.push_back({spc, state});
       }
       std::sort(line.begin(), line.end());
       if (!overlap_knob) std::reverse(line.begin(), line.end());
@@ -215,10 +150,7 @@ json dem_map(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
   }
   return {{"against", against},
           {"t0_kinetic_theory", number_or_null(t0_theory)},
-          {"default",
-           {{"max_overlap", scene.case_max_overlap},
-            {"steps_per_contact", scene.case_steps_per_contact},
-            {"adaptive_stiffness", scene.case_adaptive_stiffness}}},
+          {"default", contact_json(family, case_setting)},
           {"points", points},
           {"boundaries", boundaries}};
 }

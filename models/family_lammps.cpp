@@ -1,0 +1,122 @@
+// The soft-contact (DEM) particles of LAMMPS as a family (models/particle_family.hpp): besides
+// the ensemble size, the contact knobs md.max_overlap, md.steps_per_contact and
+// md.adaptive_stiffness, whose bias against the hard disks the atlas maps (docs/atlas.md).
+#include <cmath>
+#include <tuple>
+
+#include "models/particle_cost.hpp"
+#include "models/particle_family.hpp"
+#include "scene/case_config.hpp"
+
+namespace granvv::app {
+namespace {
+
+// The default contact grid around the case's own (docs/atlas.md): md.max_overlap and
+// md.steps_per_contact times these (the schema refuses what lies beyond its ranges, and the map
+// shows those as refused).
+const std::vector<double> kOverlapFactors = {0.5, 1.0, 2.0, 5.0, 10.0};
+const std::vector<double> kContactStepFactors = {1.0 / 3.0, 0.5, 1.0, 2.0};
+
+class LammpsFamily : public ParticleFamily {
+ public:
+  LammpsFamily() : ParticleFamily("lammps", {"C4", "v"}) {}
+  std::vector<KnobSpec> knobs() const override {
+    auto k = ParticleFamily::knobs();
+    k.push_back({"max_overlap", KnobSpec::Type::real, 0.0});
+    k.push_back({"steps_per_contact", KnobSpec::Type::integer, 0.0});
+    k.push_back({"adaptive_stiffness", KnobSpec::Type::flag, 0.0});
+    return k;
+  }
+  bool has_contact_map() const override { return true; }
+
+  AtlasSetting case_setting(const AtlasScene& scene) const override {
+    const CaseConfig& c = *scene.config;
+    AtlasSetting s = ParticleFamily::case_setting(scene);
+    s.knobs["max_overlap"] = c.real("md.max_overlap");
+    s.knobs["steps_per_contact"] = double(c.int_value("md.steps_per_contact"));
+    s.knobs["adaptive_stiffness"] = c.boolean("md.adaptive_stiffness") ? 1.0 : 0.0;
+    return s;
+  }
+
+  // At the case's ensemble over max_overlaps x steps_per_contacts with the case's adaptive
+  // stiffness, and over max_overlaps at the case's steps_per_contact with it flipped.
+  std::vector<AtlasSetting> grid(const AtlasScene& scene) const override {
+    const CaseConfig& c = *scene.config;
+    const AtlasSetting own = case_setting(scene);
+    std::vector<double> overlaps = c.reals("atlas.max_overlaps");
+    if (overlaps.empty()) {
+      for (double f : kOverlapFactors) overlaps.push_back(own.knob("max_overlap") * f);
+    }
+    std::vector<int> steps;
+    for (long long k : c.integers("atlas.steps_per_contacts")) steps.push_back(int(k));
+    if (steps.empty()) {
+      for (double f : kContactStepFactors) {
+        const int k = int(std::lround(own.knob("steps_per_contact") * f));
+        if (steps.empty() || k > steps.back()) steps.push_back(k);
+      }
+    }
+    const double adaptive = own.knob("adaptive_stiffness");
+    std::vector<AtlasSetting> grid;
+    auto add = [&](double overlap, double spc, double flag) {
+      AtlasSetting s = own;
+      s.knobs["max_overlap"] = overlap;
+      s.knobs["steps_per_contact"] = spc;
+      s.knobs["adaptive_stiffness"] = flag;
+      grid.push_back(s);
+    };
+    for (double overlap : overlaps) {
+      for (int spc : steps) add(overlap, spc, adaptive);
+    }
+    for (double overlap : overlaps) add(overlap, own.knob("steps_per_contact"), 1.0 - adaptive);
+    return grid;
+  }
+  // The case's own contact first.
+  bool plan_first(const AtlasSetting& s, const AtlasScene& scene) const override {
+    return same_contact(s, case_setting(scene));
+  }
+  // In proportion to the steps (models/particle_cost.hpp).
+  double estimate(const AtlasSetting& s, const AtlasRun& pilot,
+                  const AtlasScene& scene) const override {
+    return std::max(pilot.cost.wall_seconds, 1e-3) *
+           atlas::dem_work_ratio(contact_of(s), contact_of(pilot.setting), scene.md_t_end,
+                                 scene.md_t_haff);
+  }
+  // Larger ensemble, then smaller overlap, more steps, fixed (stiffest) contact.
+  bool finer(const AtlasSetting& a, const AtlasSetting& b) const override {
+    auto order = [](const AtlasSetting& s) {
+      return std::make_tuple(s.knob("ensemble"), -s.knob("max_overlap"),
+                             s.knob("steps_per_contact"), -s.knob("adaptive_stiffness"));
+    };
+    return order(a) > order(b);
+  }
+  std::vector<std::string> overrides(const AtlasScene& scene,
+                                     const AtlasSetting& s) const override {
+    std::vector<std::string> sets = ParticleFamily::overrides(scene, s);
+    sets.push_back("md.max_overlap=" + format_real(s.knob("max_overlap")));
+    sets.push_back("md.steps_per_contact=" +
+                   std::to_string(std::lround(s.knob("steps_per_contact"))));
+    sets.push_back(std::string("md.adaptive_stiffness=") +
+                   (s.knob("adaptive_stiffness") != 0.0 ? "true" : "false"));
+    return sets;
+  }
+
+ private:
+  static bool same_contact(const AtlasSetting& a, const AtlasSetting& b) {
+    return a.knob("max_overlap") == b.knob("max_overlap") &&
+           a.knob("steps_per_contact") == b.knob("steps_per_contact") &&
+           a.knob("adaptive_stiffness") == b.knob("adaptive_stiffness");
+  }
+  static atlas::ContactKnobs contact_of(const AtlasSetting& s) {
+    return {int(std::lround(s.knob("ensemble"))), s.knob("max_overlap"),
+            int(std::lround(s.knob("steps_per_contact"))), s.knob("adaptive_stiffness") != 0.0};
+  }
+};
+
+}  // namespace
+
+const ModelFamily* lammps_family() {
+  static const LammpsFamily family;
+  return &family;
+}
+
+}  // namespace granvv::app

@@ -1,0 +1,188 @@
+// The particle families (models/particle_family.hpp): the ensemble of any registered engine, its
+// run reduced to what the atlas judges, and the table of engines that have a family of their own.
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "compare/ensemble_statistics.hpp"
+#include "compare/model_comparison.hpp"
+#include "models/families.hpp"
+#include "models/model.hpp"
+#include "models/particle_family.hpp"
+#include "models/setting_run.hpp"
+#include "scene/case_config.hpp"
+#include "scene/interruption.hpp"
+#include "scene/md_scene.hpp"
+
+namespace granvv::app {
+namespace {
+
+constexpr const char* kEnsemble = "ensemble";
+// The default ensemble sizes of the grid (docs/atlas.md).
+const std::vector<int> kEnsembles = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
+// The colour and marker of an engine without a family of its own.
+const ModelStyle kPlainStyle = {"C9", "X"};
+
+// The ensemble standard errors of the box energies at the kept times: the scatter of the
+// members' own box energies (each member's snapshot j is the mean's snapshot j,
+// compare/ensemble_fields.hpp). Energies per particle are the same in MD and scaled units.
+void take_energy_errors(const AtlasScene& scene, const fields::ModelResult& r,
+                        const MdOutcome& outcome, AtlasRun& run) {
+  if (!r.fields) return;
+  std::size_t k = 0;
+  for (const auto& [i, j] : compare::common_snapshots(compared_times(scene), *r.fields)) {
+    (void)i;
+    std::vector<std::vector<double>> thermal, flow;
+    for (const auto& member : outcome.runs) {
+      if (j >= member.fields.snapshots.size()) continue;
+      const compare::EnergiesPerParticle e = snapshot_energies(member.fields.snapshots[j]);
+      thermal.push_back({e.thermal});
+      flow.push_back({e.flow});
+    }
+    if (!thermal.empty()) {
+      run.thermal_error[k] = compare::ensemble_statistics(thermal).standard_error[0];
+      run.flow_error[k] = compare::ensemble_statistics(flow).standard_error[0];
+    }
+    ++k;
+  }
+}
+
+// An engine without a contact virial in the box pressure (the event-driven one: its collisional
+// transfer is the series value collision_virial_pressure, the mean over the interval since the
+// previous sample) gets its pressure here, as the kinetic n0 T plus that transfer, with T the
+// mean of the interval's two ends (the gas cools during it): P/(n0 T0) and P/(n0 T) averaged
+// over each member's samples, then their mean and standard error over the members.
+void take_collisional_pressure(const MdScene& md, const MdOutcome& outcome, AtlasRun& run) {
+  if (std::isfinite(run.scalars["pressure"])) return;
+  const double n0 = md.spec.scene.number_density();
+  std::vector<std::vector<double>> pressure, compressibility;
+  for (const auto& member : outcome.runs) {
+    const auto& series = member.series;
+    const std::vector<double>* transfer = nullptr;
+    for (const auto& [name, values] : series.engine) {
+      if (name == "collision_virial_pressure") transfer = &values;
+    }
+    if (!transfer || transfer->size() != series.T.size() || series.T.size() < 2) return;
+    double p = 0.0, z = 0.0;
+    for (std::size_t s = 1; s < series.T.size(); ++s) {
+      const double T = 0.5 * (series.T[s - 1] + series.T[s]);
+      p += (n0 * T + (*transfer)[s]) / n0;
+      z += 1.0 + (*transfer)[s] / (n0 * T);
+    }
+    pressure.push_back({p / double(series.T.size() - 1)});
+    compressibility.push_back({z / double(series.T.size() - 1)});
+  }
+  const auto p = compare::ensemble_statistics(pressure);
+  const auto z = compare::ensemble_statistics(compressibility);
+  run.scalars["pressure"] = p.mean[0], run.scalar_errors["pressure"] = p.standard_error[0];
+  run.scalars["compressibility"] = z.mean[0];
+  run.scalar_errors["compressibility"] = z.standard_error[0];
+}
+
+// A particle run that threw, in the atlas's failure names (models/model_setting.hpp).
+std::string particle_failure(const std::string& what) {
+  if (what.find("misses md.restitution") != std::string::npos) return "restitution_check_missed";
+  if (what.find("event-rate runaway") != std::string::npos) return "event_rate_runaway";
+  return "engine_failed";
+}
+
+}  // namespace
+
+std::vector<KnobSpec> ParticleFamily::knobs() const {
+  return {{kEnsemble, KnobSpec::Type::integer, 0.0}};
+}
+
+std::optional<std::string> ParticleFamily::not_applicable(const AtlasScene& scene) const {
+  if (scene.particles) return std::nullopt;
+  return "md.enabled = false";
+}
+
+bool ParticleFamily::is_case_model(const AtlasScene& scene) const {
+  return scene.particles && scene.config->string("md.engine") == engine_;
+}
+
+AtlasSetting ParticleFamily::case_setting(const AtlasScene& scene) const {
+  AtlasSetting s;
+  s.model = name();
+  s.knobs[kEnsemble] = double(scene.config->int_value("md.ensemble"));
+  return s;
+}
+
+AtlasSetting ParticleFamily::pilot(const AtlasScene& scene) const {
+  return with_knob(case_setting(scene), kEnsemble, 1.0);
+}
+
+std::vector<int> ParticleFamily::ensembles(const AtlasScene& scene) {
+  std::vector<int> sizes;
+  for (long long m : scene.config->integers("atlas.ensembles")) sizes.push_back(int(m));
+  return sizes.empty() ? kEnsembles : sizes;
+}
+
+std::vector<AtlasSetting> ParticleFamily::grid(const AtlasScene& scene) const {
+  std::vector<AtlasSetting> grid;
+  for (int m : ensembles(scene)) grid.push_back(with_knob(case_setting(scene), kEnsemble, m));
+  return grid;
+}
+
+double ParticleFamily::estimate(const AtlasSetting& s, const AtlasRun& pilot,
+                                const AtlasScene&) const {
+  return std::max(pilot.cost.wall_seconds, 1e-3) * s.knob(kEnsemble) /
+         std::max(1.0, pilot.setting.knob(kEnsemble));
+}
+
+bool ParticleFamily::finer(const AtlasSetting& a, const AtlasSetting& b) const {
+  return a.knob(kEnsemble) > b.knob(kEnsemble);
+}
+
+std::vector<std::string> ParticleFamily::overrides(const AtlasScene&, const AtlasSetting& s) const {
+  return {"md.engine=" + toml_quoted(engine_),
+          "md.ensemble=" + std::to_string(std::lround(s.knob(kEnsemble)))};
+}
+
+void ParticleFamily::run(const AtlasScene& scene, const CaseConfig& config, AtlasRun& run) const {
+  try {
+    const std::optional<MdScene> md = md_scene_from(config, hydro_scene_from(config));
+    const auto engine = make_engine(*md, "");
+    // A signal stops the run at its next sample (scene/interruption.hpp).
+    ParticleModel model(*md, *engine, [](int, const md::MdProgress&) { stop_if_interrupted(); });
+    fields::ModelResult r = model.run();
+    // A soft-contact engine reaches a compared time to within its time step (the largest, at
+    // the end of a run with adaptive stiffness): its snapshot stands for that time.
+    const double slack = md->spec.scene.scaled_time(engine->time_resolution());
+    for (auto& snap : r.fields->snapshots) {
+      for (double t : scene.times) {
+        if (std::abs(snap.t - t) <= slack) snap.t = t;
+      }
+    }
+    take_result(scene, r, run);
+    take_energy_errors(scene, r, model.outcome(), run);
+    take_collisional_pressure(*md, model.outcome(), run);
+    take_engine_details(model.outcome().engine_details, run);
+    run.status = "ok";
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // the engine failed: kept, it is an outcome
+    const AtlasSetting setting = run.setting;
+    run = AtlasRun{};
+    run.setting = setting;
+    run.status = particle_failure(e.what());
+    run.reason = e.what();
+  }
+}
+
+const ModelFamily* particle_family(const std::string& engine) {
+  // The engines with a family of their own; every other registered engine gets the plain one.
+  static const std::map<std::string, const ModelFamily* (*)()> own = {
+      {"lammps", &lammps_family}, {"event_driven", &event_driven_family}};
+  if (const auto it = own.find(engine); it != own.end()) return it->second();
+  static std::deque<ParticleFamily> plain;
+  for (const auto& f : plain) {
+    if (f.name() == "particles/" + engine) return &f;
+  }
+  return &plain.emplace_back(engine, kPlainStyle);
+}
+
+}  // namespace granvv::app
