@@ -1,15 +1,20 @@
 #include "atlas/atlas_power.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "atlas/detectable_error.hpp"
 #include "compare/side_by_side.hpp"
+#include "scene/case_schema.hpp"
 #include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 using nlohmann::json;
 
 namespace {
+
+// The knob every ensemble family shares (models/particle_family.hpp): its size.
+constexpr const char* kEnsemble = "ensemble";
 
 // The two directions of an injected error: the coefficient made larger and smaller.
 struct Direction {
@@ -120,6 +125,67 @@ json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
            "agreed throughout); detectable is the smallest eps from which every larger one is "
            "caught"},
           {"particles", rows}};
+}
+
+// The comparison power within its share of the budget (atlas/atlas_power.hpp): the eps grid is
+// thinned to every other value until its hydro runs fit, and skipped with the reason if even
+// two values do not.
+json comparison_power_within_budget(const AtlasScene& scene, const std::vector<AtlasRun>& runs,
+                                    const ModelFamily& reference_family,
+                                    std::vector<double> epsilons, BudgetShares& budget, int jobs,
+                                    AtlasRunner& runner, double total_budget) {
+  // The hydro the case itself runs, at its own setting, takes the injected errors.
+  const ModelFamily* hydro = nullptr;
+  for (const ModelFamily* f : model_families()) {
+    if (f->kind() == FamilyKind::discretised && f->is_case_model(scene)) hydro = f;
+  }
+  const AtlasRun* unperturbed = nullptr;
+  std::vector<const AtlasRun*> particle_runs;
+  const AtlasSetting own_particles = reference_family.case_setting(scene);
+  for (const auto& r : runs) {
+    if (hydro && r.setting == hydro->case_setting(scene)) unperturbed = &r;
+    // The reference's runs at the case's own setting but for the ensemble size.
+    const bool own_setting =
+        reference_family.with_knob(r.setting, kEnsemble, own_particles.knob(kEnsemble)) ==
+        own_particles;
+    if (r.setting.model == reference_family.name() && r.status == "ok" && r.fields && own_setting) {
+      particle_runs.push_back(&r);
+    }
+  }
+  std::stable_sort(particle_runs.begin(), particle_runs.end(),
+                   [](const AtlasRun* a, const AtlasRun* b) {
+                     return a->setting.knob(kEnsemble) < b->setting.knob(kEnsemble);
+                   });
+  const double share = budget.share();
+  budget.done();
+  if (!unperturbed || unperturbed->status != "ok") {
+    return {{"skipped", "the case's own hydro (" +
+                            (hydro ? hydro->name() : "closure " + scene.closure) +
+                            ") did not finish, so there is nothing to inject errors into"}};
+  }
+  const double each = std::max(unperturbed->cost.wall_seconds, 1e-3);
+  const std::size_t per_eps = comparison_power_settings(*hydro, scene, {1.0}).size();
+  auto estimate_of = [&](std::size_t n) { return each * double(per_eps * n) / jobs; };
+  int thinned = 0;
+  while (epsilons.size() > 2 && estimate_of(epsilons.size()) > share) {
+    std::vector<double> kept;
+    for (std::size_t i = 0; i < epsilons.size(); i += 2) kept.push_back(epsilons[i]);
+    epsilons = kept;
+    ++thinned;
+  }
+  if (estimate_of(epsilons.size()) > share) {
+    return {{"skipped", "its " + std::to_string(per_eps * epsilons.size()) +
+                            " hydro runs, estimated " + format_real(estimate_of(epsilons.size())) +
+                            " s, would pass its share of the budget (" + format_real(share) +
+                            " s of --budget " + format_real(total_budget) + ")"}};
+  }
+  const std::vector<AtlasSetting> settings = comparison_power_settings(*hydro, scene, epsilons);
+  const std::vector<AtlasRun> hydro_runs =
+      runner.run(settings, std::vector<double>(settings.size(), each));
+  budget.spend(estimate_of(epsilons.size()));
+  json power = comparison_power(*hydro, scene, *unperturbed, hydro_runs, particle_runs, epsilons);
+  power["thinned"] = thinned;  // times the default grid was halved to fit the budget
+  return power;
 }
 
 }  // namespace granvv::app

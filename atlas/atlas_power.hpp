@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "atlas/atlas_budget.hpp"
+#include "atlas/atlas_runner.hpp"
 #include "atlas/atlas_runs.hpp"
 #include "models/model_family.hpp"
 
@@ -31,5 +33,15 @@ nlohmann::json comparison_power(const ModelFamily& hydro, const AtlasScene& scen
                                 const std::vector<AtlasRun>& hydro_runs,
                                 const std::vector<const AtlasRun*>& particle_runs,
                                 const std::vector<double>& epsilons);
+
+// The comparison power within its share of the budget: the eps grid is thinned to every other
+// value until its hydro runs fit, and skipped with the reason if even two values do not. The
+// reference family's runs at the case's own setting but for their ensemble size are the
+// particle cost axis.
+nlohmann::json comparison_power_within_budget(const AtlasScene& scene,
+                                              const std::vector<AtlasRun>& runs,
+                                              const ModelFamily& reference_family,
+                                              std::vector<double> epsilons, BudgetShares& budget,
+                                              int jobs, AtlasRunner& runner, double total_budget);
 
 }  // namespace granvv::app
