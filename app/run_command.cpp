@@ -21,6 +21,7 @@
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
 #include "models/compare_scene.hpp"
+#include "models/model.hpp"
 #include "scene/atomic_file.hpp"
 #include "scene/case_catalog.hpp"
 #include "scene/case_config.hpp"
@@ -74,7 +75,7 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
                                                checkpointing.resume.size(), last_saved.state.t));
   }
   auto last = std::chrono::steady_clock::now();
-  const MdOutcome out = run_md_scene(
+  ParticleModel model(
       scene, engine,
       [&](int member, const md::MdProgress& p) {
         stop_if_interrupted();
@@ -88,6 +89,8 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
                  p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
       },
       &checkpointing);
+  model.run();
+  const MdOutcome& out = model.outcome();
   log.info("md: restitution {:.6f} (target {:.6f}), {}", out.collision_rule.restitution,
            sc.restitution, out.collision_rule.description);
   log.info(
@@ -130,7 +133,9 @@ HydroOutcome run_continuum(const HydroScene& scene, spdlog::logger& log) {
     log.info("step {:>7} t={:<10.6g} dt={:<10.3e} ({}) n_max={:<10.4g} E={:<10.5g} ETA {:.1f} s",
              p.step, p.t, p.dt, p.limited_by, p.n_max, p.energy, p.wall_seconds * (1 - f) / f);
   };
-  HydroOutcome outcome = run_hydro_scene(scene, progress);
+  HydroModel model(scene, 0, progress);
+  model.run();
+  const HydroOutcome& outcome = model.outcome();
   const auto& run = outcome.run;
   log.info("hydro stopped: {} (status {}) at t = {:.6g} after {} steps ({} rejected)",
            run.stop_reason, hydro::to_string(run.status), run.snapshots.back().state.t, run.steps,

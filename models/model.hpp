@@ -68,7 +68,10 @@ std::string crossing_time_name(double level);
 class ParticleModel : public Model {
  public:
   using Progress = std::function<void(int member, const md::MdProgress&)>;
-  ParticleModel(MdScene scene, md::ParticleEngine& engine, Progress progress = {});
+  // checkpointing (may be null: none) saves and resumes the members (scene/md_scene.hpp); it
+  // must outlive the run.
+  ParticleModel(MdScene scene, md::ParticleEngine& engine, Progress progress = {},
+                const MdCheckpointing* checkpointing = nullptr);
   std::string name() const override;
   fields::ModelResult run() override;
   const MdOutcome& outcome() const { return outcome_; }
@@ -77,6 +80,7 @@ class ParticleModel : public Model {
   MdScene scene_;
   md::ParticleEngine& engine_;
   Progress progress_;
+  const MdCheckpointing* checkpointing_;
   MdOutcome outcome_;
 };
 // The particles' scaled units (compare/ensemble_fields.hpp).

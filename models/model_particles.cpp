@@ -3,15 +3,19 @@
 
 namespace granvv::app {
 
-ParticleModel::ParticleModel(MdScene scene, md::ParticleEngine& engine, Progress progress)
-    : scene_(std::move(scene)), engine_(engine), progress_(std::move(progress)) {}
+ParticleModel::ParticleModel(MdScene scene, md::ParticleEngine& engine, Progress progress,
+                             const MdCheckpointing* checkpointing)
+    : scene_(std::move(scene)),
+      engine_(engine),
+      progress_(std::move(progress)),
+      checkpointing_(checkpointing) {}
 
 std::string ParticleModel::name() const {
   return "particles/" + scene_.engine;
 }
 
 fields::ModelResult ParticleModel::run() {
-  outcome_ = run_md_scene(scene_, engine_, progress_);
+  outcome_ = run_md_scene(scene_, engine_, progress_, checkpointing_);
   std::vector<fields::FieldSeries> members;
   for (const auto& run : outcome_.runs) members.push_back(run.fields);
   return particle_result(
