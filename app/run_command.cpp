@@ -258,6 +258,212 @@ void compare_closures(const CompareScene& compare, const HydroScene& first,
   block["closure_order"] = compare.closures;
 }
 
+// A resume continues the checkpoints of the same resolved case (every rank reads them): why it
+// cannot (empty: it can), with the checkpoints it continues in resume_from.
+std::string resume_problem(const CaseConfig& config, const fs::path& dir,
+                           const std::string& checkpointed, const MdScene& md_scene,
+                           const Ranks& ranks, std::vector<MemberCheckpoint>& resume_from) {
+  const std::string difference = checkpointed_case_difference(checkpointed, config);
+  if (!difference.empty()) {
+    return "cannot resume: the checkpoint in " + checkpoint_folder(dir).string() +
+           " is of another case (" + difference + "); run without --resume to start anew";
+  }
+  try {
+    resume_from = load_member_checkpoints(dir, md_scene.ensemble, ranks.rank, ranks.size);
+  } catch (const std::exception& e) {
+    return std::string("cannot resume: ") + e.what() + "; remove " +
+           checkpoint_folder(dir).string() + " to start anew";
+  }
+  return "";
+}
+
+// What the parts of one run share (run_command).
+struct RunContext {
+  const RunOptions& options;
+  const CaseConfig& config;
+  HydroScene& scene;
+  std::optional<MdScene>& md_scene;
+  const Ranks& ranks;
+  bool writer;
+  fs::path dir, work;
+  OutputFolder* folder;  // the writer's; null on the other ranks
+  spdlog::logger& log;
+  nlohmann::json& summary;
+  std::vector<MemberCheckpoint> resume_from;  // a resume's checkpoints
+  std::optional<std::string> checkpointed;    // the resolved case of the folder's checkpoint
+  bool frames_in_checkpoints = false;         // the particle files are beside the checkpoints
+};
+
+// The particle part of a run: the engine, its checkpoints (scene/md_checkpoint.hpp: the same
+// choice on every rank, rank 0 writes them, and the particle files go with them until the
+// particle part is done) and its frames. The summary on disk says "failed" until it returns,
+// because the Debian LAMMPS ends the process on any error inside a command (docs/physics.md §10).
+MdOutcome run_particle_part(RunContext& c) {
+  c.summary["md"] = {{"status", "failed"}};
+  c.md_scene->spec.creator_version = GRANVV_VERSION;
+  const auto engine = make_engine(*c.md_scene, c.writer ? c.work.string() : "");
+  MdCheckpointing checkpointing;
+  checkpointing.resume = c.resume_from;
+  bool checkpoint_folder_ok = true;
+  if (c.md_scene->checkpoint_interval > 0.0) {
+    checkpointing.out_dir = c.dir;
+    checkpointing.interval_seconds = c.md_scene->checkpoint_interval;
+    checkpointing.stop_requested = [&] {
+      return checkpoint_folder_ok && interruption_signal() != 0;
+    };
+    checkpointing.warn = [&](const std::string& what) { c.log.warn("{}", what); };
+    if (c.writer && c.resume_from.empty()) {
+      if (c.checkpointed && !c.options.resume) {
+        c.log.warn(
+            "the checkpoint of an earlier run in {} is replaced (granvv run --resume "
+            "would have continued it)",
+            checkpoint_folder(c.dir).string());
+      }
+      try {
+        start_checkpoints(c.dir, c.config.resolved_toml());
+      } catch (const std::exception& e) {
+        c.log.warn("no checkpoints for this run: {}", e.what());
+        checkpoint_folder_ok = false;
+        checkpointing.interval_seconds = 0.0;
+      }
+    }
+  }
+  c.frames_in_checkpoints = checkpoint_folder_ok && !checkpointing.out_dir.empty() &&
+                            c.md_scene->spec.snapshot_interval > 0.0;
+  if (checkpoint_folder_ok && !checkpointing.out_dir.empty()) {
+    c.summary["checkpoint"] = {{"folder", checkpoint_folder(c.dir).string()},
+                               {"resume", "granvv resume " + c.dir.string()}};
+  }
+  c.summary["md"]["error"] =
+      "the process ended inside the particle run (see " +
+      fs::path(engine->log_path()).filename().string() +
+      " and run.log); results.h5 holds what was finished before it and particles*.h5 the "
+      "particle frames written so far" +
+      std::string(c.frames_in_checkpoints ? " (in " + checkpoint_folder(c.dir).string() + ")"
+                                          : "") +
+      std::string(c.summary.contains("checkpoint") ? "; `granvv resume " + c.dir.string() +
+                                                         "` continues from the last checkpoint"
+                                                   : "");
+  const nlohmann::json status_so_far = c.summary["status"];
+  c.summary["status"] = "failed";
+  write_output(c.ranks, c.work / "summary.json",
+               [&] { write_file_atomically(c.work / "summary.json", summary_text(c.summary)); });
+  if (c.writer) c.folder->commit_at_exit(true);
+  c.summary["status"] = status_so_far;
+  c.log.info("md: {} engine, log in {}", engine->name(), engine->log_path());
+  const fs::path frames_dir = c.frames_in_checkpoints ? checkpoint_folder(c.dir) : c.work;
+  if (c.md_scene->spec.snapshot_interval > 0.0) {  // every rank writes its block there
+    c.md_scene->spec.h5md_path =
+        writers_value(c.ranks, c.writer ? (frames_dir / "particles.h5").string() : "");
+  }
+  MdOutcome particles =
+      run_particles(*c.md_scene, *engine, c.scene.progress_seconds, checkpointing, c.log);
+  if (c.writer) c.folder->commit_at_exit(false);
+  return particles;
+}
+
+// The parts of a run in order, each part's results written as soon as it has finished: in a
+// comparison the particles first (the hydro starts from their coarse-grained t = 0 fields or the
+// case's, and is sampled at their snapshot times), the hydro, the particles of a scene without a
+// comparison, the comparison. md keeps the particles' outcome when a later part fails.
+void run_parts(RunContext& c, const std::optional<CompareScene>& compare_scene,
+               const RunMetadata& meta, std::optional<MdOutcome>& md, int& exit_code) {
+  write_output(c.ranks, c.work / "case.toml",
+               [&] { write_file_atomically(c.work / "case.toml", c.config.resolved_toml()); });
+  // In a comparison the particles run first: the hydro starts from their coarse-grained
+  // t = 0 fields (or the case's) and is sampled at their snapshot times. Each part's results
+  // are written as soon as it has finished.
+  write_output(c.ranks, c.work / "results.h5",
+               [&] { create_results_file(c.work / "results.h5", meta); });
+  auto finish_particles = [&]() {
+    write_output(c.ranks, c.work / "results.h5",
+                 [&] { write_md_results(c.work / "results.h5", *c.md_scene, *md); });
+    c.summary["md"] = md_summary(*c.md_scene, *md);
+  };
+  if (compare_scene) {
+    md = run_particle_part(c);
+    finish_particles();
+    const auto& sc = c.md_scene->spec.scene;
+    if (compare_scene->hydro_from_md) {
+      c.scene.given_fields = fields_from_snapshot(md->fields.snapshots.front(), sc);
+      c.log.info(
+          "hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
+          "members)",
+          c.md_scene->spec.bins, md->runs.size());
+    }
+    const hydro::Physics given = c.scene.physics;
+    align_hydro_with_md(c.scene, sc, c.md_scene->spec.t_end, md->fields);
+    c.log.info(
+        "hydro: K = {:.6g}, q = {:.6g} from the particle scene (case: physics.K = {:.6g}, "
+        "physics.q = {:.6g})",
+        c.scene.physics.K, c.scene.physics.q, given.K, given.q);
+    c.log.info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", c.scene.control.t_end,
+               c.scene.control.output_times.size());
+  }
+  std::optional<HydroOutcome> outcome;
+  if (c.config.boolean("hydro.enabled")) {
+    outcome = run_continuum(c.scene, c.log);
+    const auto& run = outcome->run;
+    write_output(c.ranks, c.work / "results.h5",
+                 [&] { write_hydro_results(c.work / "results.h5", c.scene, *outcome); });
+    c.summary["hydro"] = hydro_summary(c.scene, *outcome);
+    c.summary["status"] = hydro::to_string(run.status);
+    if (run.status == hydro::RunStatus::failed) {
+      c.log.error("hydro run failed: {}", run.stop_reason);
+      exit_code = 1;
+    }
+  } else {
+    c.log.info("hydro: not run (hydro.enabled = false)");
+  }
+  if (c.md_scene) {
+    if (!md) {
+      md = run_particle_part(c);
+      finish_particles();
+    }
+    if (!outcome || c.summary["status"] == "ok") c.summary["status"] = md->runs.back().status;
+  }
+  if (compare_scene) {
+    const CompareOutcome compared =
+        compare_engines(*compare_scene, c.scene, *outcome, *c.md_scene, *md);
+    write_output(c.ranks, c.work / "results.h5", [&] {
+      write_compare_results(c.work / "results.h5", *compare_scene, *c.md_scene, compared);
+      write_pressure_comparison(c.work / "results.h5", c.scene, compare_scene->closures,
+                                *c.md_scene, *md);
+    });
+    c.summary["compare"] =
+        compare_summary(*compare_scene, c.scene, *outcome, *c.md_scene, *md, compared);
+    if (compare_scene->closures.size() > 1) {
+      compare_closures(*compare_scene, c.scene, *outcome, compared, *c.md_scene, *md, c.ranks,
+                       c.work / "results.h5", c.summary["compare"], c.log);
+    }
+    c.log.info("compare: {}", compared.verdict);
+    c.log.info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
+               outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);
+  }
+}
+
+// A particle run that finished is kept even if a later part failed: a failed write removes
+// the half-written results.h5 (app/output_folder.hpp), so its /md group is written again.
+// Whether the file is gone is known on the writer; every rank takes the same branch, since
+// write_output is collective.
+void keep_finished_particles(RunContext& c, const RunMetadata& meta, const MdOutcome& md) {
+  if (!all_ranks_ok(c.ranks, !(c.writer && !fs::exists(c.work / "results.h5")))) {
+    try {
+      write_output(c.ranks, c.work / "results.h5", [&] {
+        create_results_file(c.work / "results.h5", meta);
+        write_md_results(c.work / "results.h5", *c.md_scene, md);
+      });
+    } catch (const std::exception& e) {
+      c.log.error("the finished particle results could not be written: {}", e.what());
+    }
+  }
+  if (!c.summary["md"].contains("particles")) {
+    const nlohmann::json error = c.summary["md"].value("error", nlohmann::json());
+    c.summary["md"] = md_summary(*c.md_scene, md);
+    if (!error.is_null()) c.summary["md"]["error"] = error;
+  }
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -303,25 +509,12 @@ int run_command(const RunOptions& options) {
     if (writer) std::cerr << "granvv: error: " << folder_error << "\n";
     return 2;
   }
-  // A resume continues the checkpoints of the same resolved case (every rank reads them).
   std::vector<MemberCheckpoint> resume_from;
-  std::string resume_problem;
   const std::optional<std::string> checkpointed = checkpointed_case(dir);
-  if (options.resume && checkpointed && md_scene) {
-    const std::string difference = checkpointed_case_difference(*checkpointed, config);
-    if (!difference.empty()) {
-      resume_problem = "cannot resume: the checkpoint in " + checkpoint_folder(dir).string() +
-                       " is of another case (" + difference +
-                       "); run without --resume to start anew";
-    } else {
-      try {
-        resume_from = load_member_checkpoints(dir, md_scene->ensemble, ranks.rank, ranks.size);
-      } catch (const std::exception& e) {
-        resume_problem = std::string("cannot resume: ") + e.what() + "; remove " +
-                         checkpoint_folder(dir).string() + " to start anew";
-      }
-    }
-  }
+  const std::string resume_problem =
+      options.resume && checkpointed && md_scene
+          ? app::resume_problem(config, dir, *checkpointed, *md_scene, ranks, resume_from)
+          : std::string();
   if (!all_ranks_ok(ranks, resume_problem.empty())) {
     if (writer) std::cerr << "granvv: error: " << resume_problem << "\n";
     return 2;
@@ -357,152 +550,17 @@ int run_command(const RunOptions& options) {
                 file["sha256"].get<std::string>());
     }
   }
+  RunContext context{options,     config,  scene,
+                     md_scene,    ranks,   writer,
+                     dir,         work,    writer ? &*folder : nullptr,
+                     *log,        summary, std::move(resume_from),
+                     checkpointed};
   int exit_code = 0;
   bool interrupted = false;
-  bool frames_in_checkpoints = false;  // the particle files are written beside the checkpoints
-  std::optional<MdOutcome> md;         // kept when a later part fails
+  std::optional<MdOutcome> md;  // kept when a later part fails
   const RunMetadata meta{config.name(), GRANVV_VERSION, config.resolved_toml(), config.flattened()};
   try {
-    write_output(ranks, work / "case.toml",
-                 [&] { write_file_atomically(work / "case.toml", config.resolved_toml()); });
-    // The particle engine; the summary on disk says "failed" until it returns, because the
-    // Debian LAMMPS ends the process on any error inside a command (docs/physics.md §10).
-    auto run_particle_engine = [&]() {
-      summary["md"] = {{"status", "failed"}};
-      md_scene->spec.creator_version = GRANVV_VERSION;
-      const auto engine = make_engine(*md_scene, writer ? work.string() : "");
-      // Checkpoints (scene/md_checkpoint.hpp), the same choice on every rank; rank 0 writes them,
-      // and the particle files go with them until the particle part is done.
-      MdCheckpointing checkpointing;
-      checkpointing.resume = resume_from;
-      bool checkpoint_folder_ok = true;
-      if (md_scene->checkpoint_interval > 0.0) {
-        checkpointing.out_dir = dir;
-        checkpointing.interval_seconds = md_scene->checkpoint_interval;
-        checkpointing.stop_requested = [&] {
-          return checkpoint_folder_ok && interruption_signal() != 0;
-        };
-        checkpointing.warn = [&](const std::string& what) { log->warn("{}", what); };
-        if (writer && resume_from.empty()) {
-          if (checkpointed && !options.resume) {
-            log->warn(
-                "the checkpoint of an earlier run in {} is replaced (granvv run --resume "
-                "would have continued it)",
-                checkpoint_folder(dir).string());
-          }
-          try {
-            start_checkpoints(dir, config.resolved_toml());
-          } catch (const std::exception& e) {
-            log->warn("no checkpoints for this run: {}", e.what());
-            checkpoint_folder_ok = false;
-            checkpointing.interval_seconds = 0.0;
-          }
-        }
-      }
-      frames_in_checkpoints = checkpoint_folder_ok && !checkpointing.out_dir.empty() &&
-                              md_scene->spec.snapshot_interval > 0.0;
-      if (checkpoint_folder_ok && !checkpointing.out_dir.empty()) {
-        summary["checkpoint"] = {{"folder", checkpoint_folder(dir).string()},
-                                 {"resume", "granvv resume " + dir.string()}};
-      }
-      summary["md"]["error"] =
-          "the process ended inside the particle run (see " +
-          fs::path(engine->log_path()).filename().string() +
-          " and run.log); results.h5 holds what was finished before it and particles*.h5 the "
-          "particle frames written so far" +
-          std::string(frames_in_checkpoints ? " (in " + checkpoint_folder(dir).string() + ")"
-                                            : "") +
-          std::string(summary.contains("checkpoint") ? "; `granvv resume " + dir.string() +
-                                                           "` continues from the last checkpoint"
-                                                     : "");
-      const nlohmann::json status_so_far = summary["status"];
-      summary["status"] = "failed";
-      write_output(ranks, work / "summary.json",
-                   [&] { write_file_atomically(work / "summary.json", summary_text(summary)); });
-      if (writer) folder->commit_at_exit(true);
-      summary["status"] = status_so_far;
-      log->info("md: {} engine, log in {}", engine->name(), engine->log_path());
-      const fs::path frames_dir = frames_in_checkpoints ? checkpoint_folder(dir) : work;
-      if (md_scene->spec.snapshot_interval > 0.0) {  // every rank writes its block there
-        md_scene->spec.h5md_path =
-            writers_value(ranks, writer ? (frames_dir / "particles.h5").string() : "");
-      }
-      MdOutcome particles =
-          run_particles(*md_scene, *engine, scene.progress_seconds, checkpointing, *log);
-      if (writer) folder->commit_at_exit(false);
-      return particles;
-    };
-
-    // In a comparison the particles run first: the hydro starts from their coarse-grained
-    // t = 0 fields (or the case's) and is sampled at their snapshot times. Each part's results
-    // are written as soon as it has finished.
-    write_output(ranks, work / "results.h5",
-                 [&] { create_results_file(work / "results.h5", meta); });
-    auto finish_particles = [&]() {
-      write_output(ranks, work / "results.h5",
-                   [&] { write_md_results(work / "results.h5", *md_scene, *md); });
-      summary["md"] = md_summary(*md_scene, *md);
-    };
-    if (compare_scene) {
-      md = run_particle_engine();
-      finish_particles();
-      const auto& sc = md_scene->spec.scene;
-      if (compare_scene->hydro_from_md) {
-        scene.given_fields = fields_from_snapshot(md->fields.snapshots.front(), sc);
-        log->info(
-            "hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
-            "members)",
-            md_scene->spec.bins, md->runs.size());
-      }
-      const hydro::Physics given = scene.physics;
-      align_hydro_with_md(scene, sc, md_scene->spec.t_end, md->fields);
-      log->info(
-          "hydro: K = {:.6g}, q = {:.6g} from the particle scene (case: physics.K = {:.6g}, "
-          "physics.q = {:.6g})",
-          scene.physics.K, scene.physics.q, given.K, given.q);
-      log->info("hydro: t_end = {:.6g} (md.t_end / Lx), {} output times", scene.control.t_end,
-                scene.control.output_times.size());
-    }
-    std::optional<HydroOutcome> outcome;
-    if (config.boolean("hydro.enabled")) {
-      outcome = run_continuum(scene, *log);
-      const auto& run = outcome->run;
-      write_output(ranks, work / "results.h5",
-                   [&] { write_hydro_results(work / "results.h5", scene, *outcome); });
-      summary["hydro"] = hydro_summary(scene, *outcome);
-      summary["status"] = hydro::to_string(run.status);
-      if (run.status == hydro::RunStatus::failed) {
-        log->error("hydro run failed: {}", run.stop_reason);
-        exit_code = 1;
-      }
-    } else {
-      log->info("hydro: not run (hydro.enabled = false)");
-    }
-    if (md_scene) {
-      if (!md) {
-        md = run_particle_engine();
-        finish_particles();
-      }
-      if (!outcome || summary["status"] == "ok") summary["status"] = md->runs.back().status;
-    }
-    if (compare_scene) {
-      const CompareOutcome compared =
-          compare_engines(*compare_scene, scene, *outcome, *md_scene, *md);
-      write_output(ranks, work / "results.h5", [&] {
-        write_compare_results(work / "results.h5", *compare_scene, *md_scene, compared);
-        write_pressure_comparison(work / "results.h5", scene, compare_scene->closures, *md_scene,
-                                  *md);
-      });
-      summary["compare"] =
-          compare_summary(*compare_scene, scene, *outcome, *md_scene, *md, compared);
-      if (compare_scene->closures.size() > 1) {
-        compare_closures(*compare_scene, scene, *outcome, compared, *md_scene, *md, ranks,
-                         work / "results.h5", summary["compare"], *log);
-      }
-      log->info("compare: {}", compared.verdict);
-      log->info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
-                outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);
-    }
+    run_parts(context, compare_scene, meta, md, exit_code);
   } catch (const Interrupted& e) {
     log->warn("run stopped: {}", e.what());
     summary["status"] = "interrupted";
@@ -524,29 +582,11 @@ int run_command(const RunOptions& options) {
     if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     exit_code = 1;
   }
-  // A particle run that finished is kept even if a later part failed: a failed write removes
-  // the half-written results.h5 (app/output_folder.hpp), so its /md group is written again.
-  // Whether the file is gone is known on the writer; every rank takes the same branch, since
-  // write_output is collective.
-  if (md && !interrupted && !all_ranks_ok(ranks, !(writer && !fs::exists(work / "results.h5")))) {
-    try {
-      write_output(ranks, work / "results.h5", [&] {
-        create_results_file(work / "results.h5", meta);
-        write_md_results(work / "results.h5", *md_scene, *md);
-      });
-    } catch (const std::exception& e) {
-      log->error("the finished particle results could not be written: {}", e.what());
-    }
-  }
-  if (md && !interrupted && !summary["md"].contains("particles")) {
-    const nlohmann::json error = summary["md"].value("error", nlohmann::json());
-    summary["md"] = md_summary(*md_scene, *md);
-    if (!error.is_null()) summary["md"]["error"] = error;
-  }
+  if (md && !interrupted) keep_finished_particles(context, meta, *md);
   if (!writer) return interrupted ? interrupted_exit_code() : exit_code;
   folder->commit_at_exit(false);
   const bool frames_linked =
-      !frames_in_checkpoints || link_particle_files(checkpoint_folder(dir), work, *log);
+      !context.frames_in_checkpoints || link_particle_files(checkpoint_folder(dir), work, *log);
   const bool checkpointed_run = summary.contains("checkpoint");
   if (checkpointed_run && (interrupted || exit_code != 0)) {
     log->info("the checkpoint is kept in {}; `granvv resume {}` continues the run",
