@@ -167,6 +167,25 @@ TEST_P(EveryEngine, IsMadeByItsNameAndSetUpFromTheSampledParticles) {
   EXPECT_NEAR(held.py, sampled.py, 1e-14 * scale);
 }
 
+// The particle run sets engines up from a sampler of x-ranges (md_run.cpp), each rank drawing
+// the strips over its part of the box: on one rank, the particles of the whole-box sample.
+TEST_P(EveryEngine, SetUpFromRangesHasTheParticlesOfTheWholeBoxSample) {
+  const ParticleScene s = scene(0.9);
+  const auto whole = make(s), ranged = make(s);
+  whole->set_up(sample(s));
+  const MPI_Comm comm = ranged->comm();
+  ranged->set_up_sampled([&](double x_lo, double x_hi) {
+    return sample_particles_in(s, hydro::uniform_fields(), kSeed, x_lo, x_hi,
+                               [comm](std::vector<double>& momenta) {
+                                 MPI_Allreduce(MPI_IN_PLACE, momenta.data(), int(momenta.size()),
+                                               MPI_DOUBLE, MPI_MAX, comm);
+                               });
+  });
+  const ParticleFrame a = whole->gather_frame(), b = ranged->gather_frame();
+  EXPECT_EQ(b.x, a.x);
+  EXPECT_EQ(b.v, a.v);
+}
+
 TEST_P(EveryEngine, CollisionRuleHasTheScenesRestitution) {
   for (const double r : {0.5, 0.9, 1.0}) {
     SCOPED_TRACE(r);
@@ -248,6 +267,7 @@ TEST_P(EveryEngine, ARestoredStateAdvancesAsTheUninterruptedEngine) {
   const auto whole = make(s);
   whole->set_up(sample(s));
   whole->advance_to(0.5 * kRun);
+  EXPECT_TRUE(whole->save_state(false).particles.x.empty());  // the totals only
   const EngineState saved = whole->save_state(true);
   ASSERT_EQ(saved.particle_blocks, 1);  // one rank: every particle
   ASSERT_EQ(saved.particles.x.size(), 3 * std::size_t(kDisks));
