@@ -75,7 +75,7 @@ constexpr double kBoxWidth = 20.0;     // box 157 x 20 sigma
 constexpr double kRun = 4.0;           // ~2 collisions per disk
 constexpr std::uint64_t kSeed = 7;
 
-// The restitution a particle run demands of the engine's collision rule: app/md_scene.cpp
+// The restitution a particle run demands of the engine's collision rule: scene/md_scene.cpp
 // refuses a run whose check is farther than this from md.restitution.
 constexpr double kRestitutionTolerance = 1e-3;
 

@@ -2,12 +2,12 @@
 
 #include <variant>
 
-#include "app/case_schema.hpp"
+#include "scene/case_schema.hpp"
 
 namespace granvv::testing {
 
 md::EngineSettings default_engine_settings(const std::string& engine) {
-  (void)engine;  // every engine gets every key of [md] (app/md_scene.cpp, md_scene_from)
+  (void)engine;  // every engine gets every key of [md] (scene/md_scene.cpp, md_scene_from)
   md::EngineSettings settings;
   for (const app::KeySpec& key : app::case_schema()) {
     if (key.section() != "md" || key.default_value.kind != app::Default::Kind::value) continue;

@@ -8,7 +8,7 @@
 namespace granvv::testing {
 
 // The settings `engine` gets from a case that sets none of its keys: the case schema's defaults
-// of every number and boolean of [md], as the run passes them (app/md_scene.cpp), booleans as
+// of every number and boolean of [md], as the run passes them (scene/md_scene.cpp), booleans as
 // 1 or 0. Every engine gets the same map today and reads the keys it understands.
 md::EngineSettings default_engine_settings(const std::string& engine);
 
