@@ -25,6 +25,7 @@
 #include "md_bridge/particle_sampler.hpp"
 #include "support/cli_runner.hpp"
 #include "support/elastic_gas.hpp"
+#include "support/engine_settings.hpp"
 
 namespace granvv::md {
 namespace {
@@ -87,11 +88,8 @@ TEST(HardDiskCollision, CollapseRulesApplyInOrder) {
 }
 
 TEST(EventDrivenEngine, HeadOnCollisionHasTheRestitutionAndTheRegistryMakesIt) {
-  ParticleEngineSetup setup;
-  setup.scene = scene_from_particles(400, 0.05, 50.0, 0.8);
-  setup.settings = {{"md.collapse_speed", 0.01},     {"md.contact_duration", 0.0},
-                    {"md.elastic_speed", 0.0},       {"md.contact_speed", 0.0},
-                    {"md.max_collision_rate", 1000}, {"md.bins", 4}};
+  ParticleEngineSetup setup = granvv::testing::default_engine_setup(
+      "event_driven", scene_from_particles(400, 0.05, 50.0, 0.8));
   const auto engine = make_particle_engine("event_driven", setup);
   EXPECT_EQ(engine->name(), "event_driven");
   const CollisionRuleCheck check = engine->check_collision_rule();

@@ -1,4 +1,6 @@
 """Numbers and verdict badges for the page (HTML-safe) and for matplotlib labels."""
+import math
+
 import numpy as np
 from markupsafe import Markup, escape
 
@@ -47,9 +49,11 @@ def within_tolerance(ok):
 
 
 def tex_num(v, digits=3):
-    """Number for a matplotlib label."""
-    if v is None:
+    """Number for a matplotlib label ("?" when absent or NaN)."""
+    if v is None or math.isnan(v):
         return "?"
+    if math.isinf(v):
+        return r"\infty" if v > 0 else r"-\infty"
     if v != 0 and not 1e-3 <= abs(v) < 1e5:
         m, e = f"{v:.{digits - 1}e}".split("e")
         return rf"{m}\times10^{{{int(e)}}}"
