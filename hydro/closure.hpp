@@ -12,8 +12,8 @@
 // Every per-cell quantity is evaluated for a whole mesh in one call (arrays in, arrays out), so
 // choosing a closure at run time costs one virtual call per array, none per cell.
 //
-// Adding a closure (docs/architecture.md): its .hpp/.cpp implementing Closure, and one line in
-// make_closure (hydro/closure_registry.cpp).
+// Adding a closure (docs/architecture.md): its .hpp/.cpp implementing Closure, and one entry in
+// the registry (hydro/closure_registry.cpp) with its maker and its own case keys, if any.
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hydro/cooling_rate.hpp"
+#include "hydro/parameter_set.hpp"
 #include "hydro/physics.hpp"
 #include "hydro/transport_factors.hpp"
 
@@ -121,6 +122,20 @@ struct ClosureParameterProblem {
   std::string parameter;  // "area_fraction"
   std::string reason;     // "the enskog closure needs an area fraction in (0, 0.69)"
 };
+
+// A key a closure declares as its own (hydro/closure_registry.cpp): the case key
+// hydro.<spec.name>, which reaches the closure as ClosureParameters::extra[spec.name] (a real;
+// an integer or a switch as one, true = 1). The case schema derives these keys, and a case
+// that runs only other closures may not set them. Keys every closure reads (physics.K, q,
+// cooling, area_fraction, the hydro.*_factor errors) are the schema's own.
+struct ClosureKey {
+  ParameterSpec spec;
+  std::string closure;  // the hydro.closure it belongs to
+  std::string key() const { return "hydro." + spec.name; }
+};
+// Every closure's own keys, closure by closure in the order of closure_names(). Two closures
+// may not declare the same key (std::logic_error).
+const std::vector<ClosureKey>& closure_keys();
 
 // The registered closures by name ("dilute": paper Eqs. (1)-(2)), wrapped in a ScaledClosure
 // when params.factors is not the identity (hydro/scaled_closure.hpp). Throws

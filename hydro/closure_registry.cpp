@@ -15,6 +15,10 @@ struct RegisteredClosure {
   std::function<std::unique_ptr<Closure>(const ClosureParameters&)> make;
   // Empty: the closure reads no parameter beyond K, q and the cooling rate.
   std::function<std::optional<ClosureParameterProblem>(const ClosureParameters&)> problem;
+  // Its own case keys hydro.<name> (closure.hpp, ClosureKey). Neither closure has one today:
+  // both read physics.area_fraction (the Enskog closure for chi(phi), the dilute one for its
+  // area-fraction validity monitor), so that key is the schema's.
+  std::vector<ParameterSpec> keys;
 };
 
 const std::map<std::string, RegisteredClosure>& closure_registry() {
@@ -25,8 +29,9 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
           return std::make_unique<DiluteClosure>(p.physics, p.cooling,
                                                  phi0 == p.extra.end() ? 0.0 : phi0->second);
         },
+        {},
         {}}},
-      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem}},
+      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}}},
   };
   return registry;
 }
@@ -54,6 +59,25 @@ std::optional<ClosureParameterProblem> closure_parameter_problem(const std::stri
                                                                  const ClosureParameters& params) {
   const auto& closure = find_closure(name);
   return closure.problem ? closure.problem(params) : std::nullopt;
+}
+
+const std::vector<ClosureKey>& closure_keys() {
+  static const std::vector<ClosureKey> keys = [] {
+    std::vector<ClosureKey> out;
+    for (const auto& [name, closure] : closure_registry()) {
+      for (const ParameterSpec& spec : closure.keys) {
+        for (const ClosureKey& other : out) {
+          if (other.spec.name == spec.name) {
+            throw std::logic_error("closures " + other.closure + " and " + name +
+                                   " both declare hydro." + spec.name);
+          }
+        }
+        out.push_back({spec, name});
+      }
+    }
+    return out;
+  }();
+  return keys;
 }
 
 std::vector<std::string> closure_names() {

@@ -1,7 +1,8 @@
 #pragma once
-// Named scalar parameters of a model part (an initial condition, ...), declared by the part
-// itself: name, default, allowed range and a one-line help. The case schema (scene/case_schema.cpp)
-// turns each declaration into a case key, so a parameter is stated in one place only.
+// Named scalar parameters of a model part (an initial condition, a particle engine, a closure),
+// declared by the part itself: name, default, allowed range and a one-line help. The case schema
+// (scene/case_schema.cpp) turns each declaration into a case key, so a parameter is stated in one
+// place only.
 #include <map>
 #include <optional>
 #include <string>
@@ -13,9 +14,9 @@ namespace granvv::hydro {
 // Named reals: a table such as [initial.constants] (name -> value).
 using NamedReals = std::map<std::string, double>;
 
-// A real, an integer, a text (a formula, a file path, a choice) or a table of named reals; the
-// alternative is the parameter's type.
-using ParameterValue = std::variant<double, long long, std::string, NamedReals>;
+// A real, an integer, a text (a formula, a file path, a choice), a table of named reals or a
+// switch; the alternative is the parameter's type.
+using ParameterValue = std::variant<double, long long, std::string, NamedReals, bool>;
 
 // Allowed values: min/max bounds, each open or closed; no bound = unbounded. For a text
 // parameter, `choices` (empty = any text).
@@ -28,6 +29,7 @@ struct ParameterRange {
   static ParameterRange at_least(double lo) { return bounds(lo, std::nullopt, false); }
   static ParameterRange greater_than(double lo) { return bounds(lo, std::nullopt, true); }
   static ParameterRange closed(double lo, double hi) { return bounds(lo, hi, false); }
+  static ParameterRange open_closed(double lo, double hi) { return bounds(lo, hi, true); }
   static ParameterRange one_of(std::vector<std::string> names) {
     ParameterRange r;
     r.choices = std::move(names);
@@ -53,6 +55,7 @@ struct ParameterSpec {
   bool is_integer() const { return std::holds_alternative<long long>(default_value); }
   bool is_text() const { return std::holds_alternative<std::string>(default_value); }
   bool is_named_reals() const { return std::holds_alternative<NamedReals>(default_value); }
+  bool is_boolean() const { return std::holds_alternative<bool>(default_value); }
   bool operator==(const ParameterSpec& o) const;
 };
 

@@ -31,14 +31,33 @@ constexpr double kEventsPerReorder = 2.0;
 // cell size), so a segment beyond this many events is a loop of crossings, not a gas.
 constexpr double kEventsPerBudgetedCollision = 100.0;
 
-double required_setting(const EngineSettings& settings, const std::string& key) {
-  const auto found = settings.find(key);
-  if (found == settings.end())
-    throw std::invalid_argument("the event-driven engine needs the setting " + key);
-  return found->second;
-}
+constexpr const char* kWho = "the event-driven engine";
 
 }  // namespace
+
+// The help of each key begins with the engine's name, as the resolved case.toml shows it.
+const EngineKeys& EventDrivenEngine::keys() {
+  using hydro::ParameterRange;
+  static const EngineKeys keys = {
+      {"collapse_speed", 0.01, ParameterRange::closed(0, 10),
+       "event_driven: impact speed u0 (sqrt(T0/m)) below which the restitution rises to 1, "
+       "Bizon et al. 1998 (ends inelastic collapse); 0 = off"},
+      {"contact_duration", 0.0, ParameterRange::closed(0, 1e6),
+       "event_driven: t_c of the TC model (Luding & McNamara 1998), MD time: an impact within "
+       "t_c of either disk's previous impact is elastic (ends inelastic collapse under load); "
+       "0 = off"},
+      {"contact_speed", 0.0, ParameterRange::closed(0, 10),
+       "event_driven: the TC rule (md.contact_duration) applies only to impacts slower than this "
+       "(sqrt(T0/m)), those of a packing rather than of the gas; 0 = to every impact"},
+      {"elastic_speed", 0.0, ParameterRange::closed(0, 10),
+       "event_driven: impact speed delta (sqrt(T0/m)) below which an impact is elastic, Ben-Naim "
+       "et al. 1999 (ends inelastic collapse of a packing under load); 0 = off"},
+      {"max_collision_rate", 1000.0, ParameterRange::closed(1, 1e9),
+       "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
+       "(event-rate runaway)"},
+  };
+  return keys;
+}
 
 EventDrivenEngine::EventDrivenEngine(EventDrivenOptions options)
     : options_(std::move(options)), made_(std::chrono::steady_clock::now()) {
@@ -70,12 +89,12 @@ std::unique_ptr<ParticleEngine> EventDrivenEngine::make(const ParticleEngineSetu
   o.box_length = setup.scene.box_length;
   o.box_width = setup.scene.box_width;
   o.particles = setup.scene.particles;
-  o.collapse.collapse_speed = required_setting(setup.settings, "md.collapse_speed");
-  o.collapse.contact_duration = required_setting(setup.settings, "md.contact_duration");
-  o.collapse.elastic_speed = required_setting(setup.settings, "md.elastic_speed");
-  o.collapse.contact_speed = required_setting(setup.settings, "md.contact_speed");
-  o.max_collision_rate = required_setting(setup.settings, "md.max_collision_rate");
-  o.virial_bins = int(std::lround(required_setting(setup.settings, "md.bins")));
+  o.collapse.collapse_speed = required_setting(setup.settings, "md.collapse_speed", kWho);
+  o.collapse.contact_duration = required_setting(setup.settings, "md.contact_duration", kWho);
+  o.collapse.elastic_speed = required_setting(setup.settings, "md.elastic_speed", kWho);
+  o.collapse.contact_speed = required_setting(setup.settings, "md.contact_speed", kWho);
+  o.max_collision_rate = required_setting(setup.settings, "md.max_collision_rate", kWho);
+  o.virial_bins = int(std::lround(required_setting(setup.settings, "md.bins", kWho)));
   o.comm = setup.comm;
   return std::make_unique<EventDrivenEngine>(std::move(o));
 }

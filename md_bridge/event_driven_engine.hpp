@@ -21,7 +21,7 @@
 namespace granvv::md {
 
 struct EventDrivenOptions {
-  // Set from the scene and the md.* keys (their defaults are in the case schema only).
+  // Set from the scene and the md.* keys (their defaults are in keys() only).
   double restitution = 1.0;  // r, the scene's
   double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
   double box_width = 0.0;
@@ -49,10 +49,11 @@ class EventDrivenEngine final : public ParticleEngine {
  public:
   // Throws std::invalid_argument (naming the md.* key or the box) for settings it cannot run.
   explicit EventDrivenEngine(EventDrivenOptions options);
-  // From the registry: the scene and the keys md.collapse_speed, md.contact_duration,
-  // md.elastic_speed,
-  // md.max_collision_rate, md.bins.
+  // From the registry: the scene, its own keys (keys()) and md.bins.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
+  // Its own case keys: md.collapse_speed, md.contact_duration, md.contact_speed,
+  // md.elastic_speed, md.max_collision_rate.
+  static const EngineKeys& keys();
 
   std::string name() const override { return "event_driven"; }
   std::string log_path() const override { return "none"; }

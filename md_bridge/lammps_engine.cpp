@@ -26,14 +26,21 @@ namespace {
 constexpr const char* kContactStressCompute = "granvv_contact_stress";
 constexpr const char* kContactVirialSum = "granvv_contact_virial";
 
-double required_setting(const EngineSettings& settings, const std::string& key) {
-  const auto found = settings.find(key);
-  if (found == settings.end())
-    throw std::invalid_argument("the LAMMPS engine needs the setting " + key);
-  return found->second;
-}
+constexpr const char* kWho = "the LAMMPS engine";
 
 }  // namespace
+
+const EngineKeys& LammpsEngine::keys() {
+  static const EngineKeys keys = {
+      {"max_overlap", 0.01, hydro::ParameterRange::open_closed(0, 0.1),
+       "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
+      {"steps_per_contact", 30LL, hydro::ParameterRange::closed(10, 1e4),
+       "time steps per contact duration"},
+      {"adaptive_stiffness", true, hydro::ParameterRange::any(),
+       "lower kn and raise dt as the gas cools, restitution fixed"},
+  };
+  return keys;
+}
 
 double fastest_relative_speed(const double* v, int n, MPI_Comm comm) {
   double fastest = 0.0;
@@ -55,10 +62,10 @@ std::unique_ptr<ParticleEngine> LammpsEngine::make(const ParticleEngineSetup& se
   o.box_length = setup.scene.box_length;
   o.box_width = setup.scene.box_width;
   o.particles = setup.scene.particles;
-  o.max_overlap = required_setting(setup.settings, "md.max_overlap");
+  o.max_overlap = required_setting(setup.settings, "md.max_overlap", kWho);
   o.steps_per_contact =
-      static_cast<int>(std::lround(required_setting(setup.settings, "md.steps_per_contact")));
-  o.adaptive_stiffness = required_setting(setup.settings, "md.adaptive_stiffness") != 0.0;
+      static_cast<int>(std::lround(required_setting(setup.settings, "md.steps_per_contact", kWho)));
+  o.adaptive_stiffness = required_setting(setup.settings, "md.adaptive_stiffness", kWho) != 0.0;
   o.log_file = setup.log_dir.empty()
                    ? "none"
                    : (std::filesystem::path(setup.log_dir) / "log.lammps").string();

@@ -19,7 +19,7 @@
 namespace granvv::md {
 
 struct LammpsEngineOptions {
-  // Set from the scene and the md.* keys (their defaults are in the case schema only).
+  // Set from the scene and the md.* keys (their defaults are in keys() only).
   double restitution = 0.0;  // target r, the scene's
   double box_length = 0.0;   // Lx, Ly (sigma); the box is [-L/2, L/2)
   double box_width = 0.0;
@@ -44,6 +44,8 @@ class LammpsEngine final : public ParticleEngine {
   // md.adaptive_stiffness (std::invalid_argument if one is missing); the log is
   // log_dir/log.lammps.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
+  // Its own case keys: md.max_overlap, md.steps_per_contact, md.adaptive_stiffness.
+  static const EngineKeys& keys();
 
   std::string name() const override { return "lammps"; }
   std::string log_path() const override { return options_.log_file; }

@@ -10,20 +10,35 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
 #include <vector>
 
 #include "fields/model_result.hpp"
+#include "hydro/parameter_set.hpp"
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/particle_scene.hpp"
 
 namespace granvv::md {
 
-// The case's [md] settings by key ("md.max_overlap" -> 0.01; booleans as 1 or 0). Each
-// engine reads the keys it understands and ignores the others.
+// The case keys an engine declares as its own (hydro/parameter_set.hpp): md.<name>, with its
+// default, range and help. The case schema derives them through the registry
+// (particle_engine_registry.hpp), and a case that runs another engine may not set them.
+using EngineKeys = std::vector<hydro::ParameterSpec>;
+
+// The case's settings for the engine by key ("md.max_overlap" -> 0.01; integers as reals,
+// booleans as 1 or 0): the [md] keys every scene has and the engine's own keys.
 using EngineSettings = std::map<std::string, double>;
+
+// The setting `key`; std::invalid_argument "<who> needs the setting <key>" when it is missing.
+inline double required_setting(const EngineSettings& settings, const std::string& key,
+                               const std::string& who) {
+  const auto found = settings.find(key);
+  if (found == settings.end()) throw std::invalid_argument(who + " needs the setting " + key);
+  return found->second;
+}
 
 struct ParticleEngineSetup {
   ParticleScene scene;

@@ -13,17 +13,20 @@ namespace {
 using Maker = std::unique_ptr<ParticleEngine> (*)(const ParticleEngineSetup&);
 using WorkEstimator = ParticleWorkEstimate (*)(const ParticleWorkQuestion&);
 
-// One row per engine: its md.engine value, its maker and its work estimate.
+using KeyDeclaration = const EngineKeys& (*)();
+
+// One row per engine: its md.engine value, its maker, its work estimate and its own keys.
 struct EngineRow {
   std::string name;
   Maker make;
   WorkEstimator work;
+  KeyDeclaration keys;
 };
 
 const std::vector<EngineRow>& engines() {
   static const std::vector<EngineRow> rows = {
-      {"lammps", &LammpsEngine::make, &lammps_work},
-      {"event_driven", &EventDrivenEngine::make, &event_driven_work},
+      {"lammps", &LammpsEngine::make, &lammps_work, &LammpsEngine::keys},
+      {"event_driven", &EventDrivenEngine::make, &event_driven_work, &EventDrivenEngine::keys},
   };
   return rows;
 }
@@ -43,6 +46,25 @@ std::vector<std::string> particle_engine_names() {
   std::vector<std::string> names;
   for (const EngineRow& row : engines()) names.push_back(row.name);
   return names;
+}
+
+const std::vector<ParticleEngineKey>& particle_engine_keys() {
+  static const std::vector<ParticleEngineKey> keys = [] {
+    std::vector<ParticleEngineKey> out;
+    for (const EngineRow& row : engines()) {
+      for (const hydro::ParameterSpec& spec : row.keys()) {
+        for (const ParticleEngineKey& other : out) {
+          if (other.spec.name == spec.name) {
+            throw std::logic_error("particle engines " + other.engine + " and " + row.name +
+                                   " both declare md." + spec.name);
+          }
+        }
+        out.push_back({spec, row.name});
+      }
+    }
+    return out;
+  }();
+  return keys;
 }
 
 std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,

@@ -1,6 +1,6 @@
 #pragma once
 // The particle engines by name: the case key md.engine selects one, and with it the estimate
-// of a run's work.
+// of a run's work and the engine's own case keys.
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +12,16 @@ namespace granvv::md {
 
 // The allowed values of md.engine (its default is in scene/case_schema.cpp).
 std::vector<std::string> particle_engine_names();
+
+// A key an engine declares as its own: the case key md.<spec.name>.
+struct ParticleEngineKey {
+  hydro::ParameterSpec spec;
+  std::string engine;  // the md.engine it belongs to
+  std::string key() const { return "md." + spec.name; }
+};
+// Every engine's own keys, engine by engine in registry order, each in its declared order. Two
+// engines may not declare the same key (std::logic_error).
+const std::vector<ParticleEngineKey>& particle_engine_keys();
 
 // Throws std::invalid_argument for an unknown name (listing the known ones) or settings the
 // engine refuses.

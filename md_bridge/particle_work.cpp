@@ -10,12 +10,7 @@ namespace granvv::md {
 
 namespace {
 
-double required_setting(const EngineSettings& settings, const std::string& key) {
-  const auto found = settings.find(key);
-  if (found == settings.end())
-    throw std::invalid_argument("the work estimate needs the setting " + key);
-  return found->second;
-}
+constexpr const char* kWho = "the work estimate";
 
 bool cools(double haff_time) {
   return std::isfinite(haff_time) && haff_time > 0.0;
@@ -27,9 +22,10 @@ ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q) {
   const double n = double(q.scene.particles);
   const double u =
       2.0 * (std::sqrt(2.0 * q.hottest_temperature * std::log(std::max(n, 2.0))) + q.fastest_flow);
-  const double dt0 = 3.14159265358979323846 * required_setting(q.settings, "md.max_overlap") / u /
-                     double(std::lround(required_setting(q.settings, "md.steps_per_contact")));
-  const bool adaptive = required_setting(q.settings, "md.adaptive_stiffness") != 0.0;
+  const double dt0 =
+      3.14159265358979323846 * required_setting(q.settings, "md.max_overlap", kWho) / u /
+      double(std::lround(required_setting(q.settings, "md.steps_per_contact", kWho)));
+  const bool adaptive = required_setting(q.settings, "md.adaptive_stiffness", kWho) != 0.0;
   const bool haff = adaptive && cools(q.haff_time);
   const double steps = haff ? q.haff_time / dt0 * std::log1p(q.t_end / q.haff_time) : q.t_end / dt0;
   ParticleWorkEstimate w;

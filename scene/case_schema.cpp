@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <type_traits>
 
 #include "hydro/closure.hpp"
@@ -49,7 +50,14 @@ ValueType value_type_of(const hydro::ParameterSpec& spec) {
   if (spec.is_integer()) return kInteger;
   if (spec.is_text()) return kString;
   if (spec.is_named_reals()) return ValueType::real_table;
+  if (spec.is_boolean()) return kBoolean;
   return kReal;
+}
+
+// The row of case key `key` that a model part declares (initial condition, engine, closure).
+KeySpec declared_row(std::string key, const hydro::ParameterSpec& spec, std::string help) {
+  const Default value = std::visit([](auto x) { return Default(x); }, spec.default_value);
+  return {std::move(key), value_type_of(spec), value, constraint_of(spec.range), std::move(help)};
 }
 
 // initial.type, one of the registered types, then initial.<name> for every parameter a type
@@ -61,28 +69,48 @@ std::vector<KeySpec> initial_condition_rows() {
       {"initial.type", kString, "single_mode", one_of(types), "initial condition"}};
   for (const auto& key : hydro::initial_parameter_keys()) {
     const auto& spec = key.spec;
-    const Default value = std::visit([](auto x) { return Default(x); }, spec.default_value);
     const std::string help =
         key.types.empty() ? spec.help : join(key.types, "/") + ": " + spec.help;
-    rows.push_back(
-        {"initial." + spec.name, value_type_of(spec), value, constraint_of(spec.range), help});
+    rows.push_back(declared_row("initial." + spec.name, spec, help));
   }
   return rows;
 }
 
-// `rows` with the [initial] rows inserted after the last [physics] row.
-std::vector<KeySpec> with_initial_condition_rows(std::vector<KeySpec> rows) {
-  auto after_physics = rows.begin();
-  for (auto it = rows.begin(); it != rows.end(); ++it) {
-    if (it->section() == "physics") after_physics = it + 1;
+// The keys each particle engine declares as its own (md_bridge/particle_engine_registry.hpp),
+// with the engine's help as written beside it.
+std::vector<KeySpec> particle_engine_rows() {
+  std::vector<KeySpec> rows;
+  for (const auto& key : md::particle_engine_keys()) {
+    rows.push_back(declared_row(key.key(), key.spec, key.spec.help));
   }
-  const std::vector<KeySpec> initial = initial_condition_rows();
-  rows.insert(after_physics, initial.begin(), initial.end());
   return rows;
 }
 
-// Every row but the [initial] ones (with_initial_condition_rows), in schema order.
-std::vector<KeySpec> rows_without_initial() {
+// The keys each closure declares as its own (hydro/closure.hpp, closure_keys), likewise.
+std::vector<KeySpec> closure_rows() {
+  std::vector<KeySpec> rows;
+  for (const auto& key : hydro::closure_keys()) {
+    rows.push_back(declared_row(key.key(), key.spec, key.spec.help));
+  }
+  return rows;
+}
+
+// `rows` with `inserted` after the row of key `anchor`, or after the last row of table
+// `anchor`.
+std::vector<KeySpec> inserted_after(std::vector<KeySpec> rows, const std::string& anchor,
+                                    const std::vector<KeySpec>& inserted) {
+  std::optional<std::size_t> after;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].key == anchor || rows[i].section() == anchor) after = i + 1;
+  }
+  if (!after) throw std::logic_error("case schema: no row " + anchor + " to insert after");
+  rows.insert(rows.begin() + std::ptrdiff_t(*after), inserted.begin(), inserted.end());
+  return rows;
+}
+
+// Every row but the declared ones (the [initial] parameters, the engines' and closures' own
+// keys: case_schema() inserts them), in schema order.
+std::vector<KeySpec> rows_without_declared() {
   return {
       // [case]
       {"case.name", kString, kFileStem, name_like(), "scene name; output goes to out/<name>"},
@@ -146,6 +174,8 @@ std::vector<KeySpec> rows_without_initial() {
       {"hydro.cooling_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's cooling sink, and so Haff's 1/t0 (an injected model error, as "
        "hydro.viscosity_factor)"},
+      // The closures' own keys (hydro/closure_registry.cpp), if any, are inserted here by
+      // case_schema().
 
       // [analysis]
       {"analysis.tau_fit_min_density", kReal, 10.0, greater_than(1),
@@ -189,28 +219,8 @@ std::vector<KeySpec> rows_without_initial() {
       {"md.kernel", kString, "bin", one_of({"bin", "gaussian", "lucy"}), "coarse-graining kernel"},
       {"md.kernel_width", kReal, 0.0, non_negative(),
        "kernel width in sigma (gaussian, lucy); 0 for bins"},
-      {"md.max_overlap", kReal, 0.01, open_closed(0, 0.1),
-       "largest overlap at the fastest relative speed, in sigma (hard-disk limit)"},
-      {"md.steps_per_contact", kInteger, 30, closed_closed(10, 1e4),
-       "time steps per contact duration"},
-      {"md.adaptive_stiffness", kBoolean, true, any_value(),
-       "lower kn and raise dt as the gas cools, restitution fixed"},
-      {"md.collapse_speed", kReal, 0.01, closed_closed(0, 10),
-       "event_driven: impact speed u0 (sqrt(T0/m)) below which the restitution rises to 1, "
-       "Bizon et al. 1998 (ends inelastic collapse); 0 = off"},
-      {"md.contact_duration", kReal, 0.0, closed_closed(0, 1e6),
-       "event_driven: t_c of the TC model (Luding & McNamara 1998), MD time: an impact within "
-       "t_c of either disk's previous impact is elastic (ends inelastic collapse under load); "
-       "0 = off"},
-      {"md.contact_speed", kReal, 0.0, closed_closed(0, 10),
-       "event_driven: the TC rule (md.contact_duration) applies only to impacts slower than this "
-       "(sqrt(T0/m)), those of a packing rather than of the gas; 0 = to every impact"},
-      {"md.elastic_speed", kReal, 0.0, closed_closed(0, 10),
-       "event_driven: impact speed delta (sqrt(T0/m)) below which an impact is elastic, Ben-Naim "
-       "et al. 1999 (ends inelastic collapse of a packing under load); 0 = off"},
-      {"md.max_collision_rate", kReal, 1000.0, closed_closed(1, 1e9),
-       "event_driven: collisions per disk and unit MD time beyond which a segment stops the run "
-       "(event-rate runaway)"},
+      // The particle engines' own keys (md_bridge/*_engine.cpp, keys()) are inserted here by
+      // case_schema().
       {"md.accept_long_run", kBoolean, false, any_value(),
        "run a particle scene whose work per rank is above the limit of a run that can finish "
        "here (1e13 atom-steps, 3e10 collisions; the estimate is in --dry-run) instead of "
@@ -295,9 +305,24 @@ std::vector<KeySpec> with_integer_bounds(std::vector<KeySpec> rows) {
 
 }  // namespace
 
+std::optional<KeyOwner> key_owner(std::string_view key) {
+  for (const auto& k : md::particle_engine_keys()) {
+    if (k.key() == key) return KeyOwner{"md.engine", k.engine};
+  }
+  for (const auto& k : hydro::closure_keys()) {
+    if (k.key() == key) return KeyOwner{"hydro.closure", k.closure};
+  }
+  return std::nullopt;
+}
+
 const std::vector<KeySpec>& case_schema() {
-  static const std::vector<KeySpec> rows =
-      with_integer_bounds(with_initial_condition_rows(rows_without_initial()));
+  static const std::vector<KeySpec> rows = [] {
+    std::vector<KeySpec> all = rows_without_declared();
+    all = inserted_after(std::move(all), "physics", initial_condition_rows());
+    all = inserted_after(std::move(all), "hydro.cooling_factor", closure_rows());
+    all = inserted_after(std::move(all), "md.kernel_width", particle_engine_rows());
+    return with_integer_bounds(std::move(all));
+  }();
   return rows;
 }
 

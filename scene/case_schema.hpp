@@ -3,8 +3,10 @@
 //
 // A row names a dotted key, its type, its default (or that it is required), a constraint and a
 // one-line description. Tables ([physics], [hydro], ...) are implied by the dotted keys, so adding
-// a section is a matter of adding rows to case_schema() in case_schema.cpp. Checks that involve
-// several keys are rows of case_cross_checks().
+// a section is a matter of adding rows to case_schema() in case_schema.cpp. The keys of one
+// model part (an initial-condition type, a particle engine, a closure) are declared beside the
+// part and derived from its registry. Checks that involve several keys are rows of
+// case_cross_checks().
 
 #include <cstddef>
 #include <functional>
@@ -116,8 +118,19 @@ struct KeySpec {
   std::string leaf() const;     // "K"
 };
 
-// All keys, in the order they are written to the resolved case.
+// All keys, in the order they are written to the resolved case: the rows of case_schema.cpp
+// with the keys that model parts declare inserted (the initial conditions' initial.*, the
+// particle engines' own md.* and the closures' own hydro.* keys, from their registries).
 const std::vector<KeySpec>& case_schema();
+
+// The model a key belongs to when a particle engine or a closure declares it as its own: the key
+// that selects the model and the model's name, e.g. {"md.engine", "lammps"} for md.max_overlap.
+// nullopt for a key every scene has.
+struct KeyOwner {
+  std::string selector;  // "md.engine" or "hydro.closure"
+  std::string model;     // "lammps"
+};
+std::optional<KeyOwner> key_owner(std::string_view key);
 // nullptr if `key` is not a key of the schema.
 const KeySpec* find_key_spec(std::string_view key);
 // True if `path` is a table of the schema ("hydro"; "" is the root).

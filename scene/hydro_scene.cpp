@@ -116,6 +116,14 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
     }
     s.area_fraction = scene;
   }
+  for (const auto& key : hydro::closure_keys()) {
+    const KeySpec& spec = *find_key_spec(key.key());
+    const Value& value = c.value(key.key());
+    s.closure_settings[key.spec.name] =
+        spec.type == ValueType::integer   ? double(std::get<long long>(value))
+        : spec.type == ValueType::boolean ? double(std::get<bool>(value))
+                                          : std::get<double>(value);
+  }
   if (const auto problem = hydro::closure_parameter_problem(s.closure, closure_parameters(s))) {
     const std::string key = "physics." + problem->parameter;
     const std::string origin = c.origin(key);
@@ -128,7 +136,9 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
 }  // namespace
 
 hydro::ClosureParameters closure_parameters(const HydroScene& scene) {
-  return {scene.physics, {{"area_fraction", scene.area_fraction}}, scene.cooling, scene.factors};
+  std::map<std::string, double> extra = scene.closure_settings;
+  extra["area_fraction"] = scene.area_fraction;
+  return {scene.physics, extra, scene.cooling, scene.factors};
 }
 
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene) {

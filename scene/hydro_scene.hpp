@@ -1,6 +1,7 @@
 #pragma once
 // A case's hydro part: the engine's parameters read from the resolved case, the run, and
 // the checks against the exact solutions that the case's physics admits.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct HydroScene {
   // hydro.viscosity_factor, hydro.conductivity_factor, hydro.cooling_factor: injected model
   // errors (hydro/transport_factors.hpp).
   hydro::TransportFactors factors;
+  // The closures' own keys (hydro/closure.hpp, ClosureKey) by name, every closure's: each
+  // closure reads its own from ClosureParameters::extra.
+  std::map<std::string, double> closure_settings;
   hydro::InitialParameters initial;
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (models/compare_scene.hpp).

@@ -190,8 +190,10 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   s.engine = c.string("md.engine");
   s.checkpoint_interval = c.real("md.checkpoint_interval");
   s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
+  // The [md] keys every scene has and the engine's own (not another engine's).
   for (const KeySpec& key : case_schema()) {
-    if (key.section() != "md") continue;
+    const auto owner = key_owner(key.key);
+    if (key.section() != "md" || (owner && owner->model != s.engine)) continue;
     if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
     if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
     if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;

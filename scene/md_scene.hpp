@@ -27,7 +27,7 @@ struct MdScene {
   std::string engine;                      // md.engine
   double checkpoint_interval = 0.0;        // md.checkpoint_interval, wall seconds (0 = none)
   double haff_mode_energy_fraction = 0.0;  // md.haff_mode_energy_fraction
-  // Every number and boolean of [md] by key: the engine reads the ones it understands.
+  // Every number and boolean of [md] that is not another engine's own key, by key.
   md::EngineSettings engine_settings;
   // The work, memory and wall time of one rank (md_bridge/particle_work.hpp).
   ParticleRunEstimate estimate;
