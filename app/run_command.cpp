@@ -475,6 +475,7 @@ int run_command(const RunOptions& options) {
   try {
     const CaseSource source = locate_case(options.case_name);
     loaded = CaseConfig::from_string(source.text, source.origin, options.sets);
+    refuse_keys_of_models_not_run(*loaded);
     scene = hydro_scene_from(*loaded);
     md_scene = md_scene_from(*loaded, scene);
     compare_scene = compare_scene_from(*loaded);

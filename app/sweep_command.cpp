@@ -216,6 +216,7 @@ int sweep_command(const SweepOptions& options) {
       auto sets = fixed;
       sets.push_back(swept.key + "=" + value);
       const CaseConfig config = CaseConfig::from_string(source.text, source.origin, sets);
+      refuse_keys_of_models_not_run(config);
       HydroScene hydro = hydro_scene_from(config);
       (void)md_scene_from(config, hydro);
       (void)compare_scene_from(config);

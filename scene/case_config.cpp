@@ -664,4 +664,42 @@ std::string CaseConfig::resolved_toml() const {
   return os.str();
 }
 
+namespace {
+
+// The models of `selector` ("md.engine", "hydro.closure") that the case runs; nullopt when it
+// runs that part not at all.
+std::optional<std::vector<std::string>> models_run(const CaseConfig& c,
+                                                   const std::string& selector) {
+  if (selector == "md.engine") {
+    if (!c.boolean("md.enabled")) return std::nullopt;
+    return std::vector<std::string>{c.string("md.engine")};
+  }
+  if (!c.boolean("hydro.enabled")) return std::nullopt;
+  std::vector<std::string> closures = {c.string("hydro.closure")};
+  if (c.boolean("compare.enabled")) closures = c.strings("compare.closures");
+  return closures;
+}
+
+}  // namespace
+
+void refuse_keys_of_models_not_run(const CaseConfig& c) {
+  for (const KeySpec& spec : case_schema()) {
+    const auto owner = key_owner(spec.key);
+    if (!owner || c.origin(spec.key) == "default") continue;
+    if (c.value(spec.key) == spec.default_value.value) continue;
+    const auto run = models_run(c, owner->selector);
+    if (!run || std::find(run->begin(), run->end(), owner->model) != run->end()) continue;
+    // The key that says which models run: the selector, or the list of compared closures.
+    const std::string chosen = owner->selector == "hydro.closure" && c.boolean("compare.enabled")
+                                   ? "compare.closures"
+                                   : owner->selector;
+    const std::string origin = c.origin(chosen);
+    const std::string runs = chosen + " = " + format_value(c.value(chosen)) +
+                             (origin == "default" ? " (default)" : " (from " + origin + ")");
+    fail(c.origin(spec.key) + ": " + spec.key + " = " +
+         abbreviated(format_value(c.value(spec.key)), 80) + ": a key of " + owner->selector +
+         " = " + toml_quoted(owner->model) + ", but this case runs " + runs);
+  }
+}
+
 }  // namespace granvv::app

@@ -86,4 +86,13 @@ class CaseConfig {
   toml::table table_;
 };
 
+// Refuses a key that a particle engine or a closure declares as its own (key_owner) when the
+// user gave it (in the case file or by --set, with a value other than its default) and the case
+// does not run that model: a ConfigError naming the key, its value, the model it belongs to and
+// the one the case runs. The case runs md.engine when md.enabled, and hydro.closure and, with
+// compare.enabled, the compare.closures when hydro.enabled; a part that does not run reads none
+// of its keys, so none of them is refused. A key at its default is what every resolved
+// case.toml lists, and is not refused.
+void refuse_keys_of_models_not_run(const CaseConfig& config);
+
 }  // namespace granvv::app

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "hydro/closure.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
 #include "scene/case_config.hpp"
 #include "scene/case_schema.hpp"
 
@@ -562,6 +564,100 @@ TEST(CaseOrigins, TheLaterSetIsBlamed) {
   const CaseConfig c = load(kMinimalCase, {"hydro.t_end=2", "hydro.dt_max=1e-3"});
   EXPECT_GT(c.origin_precedence("hydro.dt_max"), c.origin_precedence("hydro.t_end"));
   EXPECT_GT(c.origin_precedence("hydro.t_end"), c.origin_precedence("hydro.cells"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The keys an engine or a closure declares as its own.
+// ---------------------------------------------------------------------------------------------
+
+// Every registered engine's declared keys are schema keys with the declared default, range and
+// help, owned by that engine; likewise every closure's.
+TEST(ModelKeys, TheSchemaHasEveryEnginesAndClosuresOwnKeysAsDeclared) {
+  std::set<std::string> engines_with_keys;
+  for (const auto& declared : md::particle_engine_keys()) {
+    SCOPED_TRACE(declared.key());
+    const KeySpec* spec = find_key_spec(declared.key());
+    ASSERT_NE(spec, nullptr);
+    EXPECT_EQ(spec->description, declared.spec.help);
+    EXPECT_EQ(spec->constraint.min, declared.spec.range.min);
+    EXPECT_EQ(spec->constraint.max, declared.spec.range.max);
+    const auto owner = key_owner(declared.key());
+    ASSERT_TRUE(owner.has_value());
+    EXPECT_EQ(owner->selector, "md.engine");
+    EXPECT_EQ(owner->model, declared.engine);
+    engines_with_keys.insert(declared.engine);
+  }
+  // Both engines have keys of their own (the contact of LAMMPS, the collapse rules of the hard
+  // disks), and the key list of --dry-run (the resolved case) holds them.
+  EXPECT_EQ(engines_with_keys, (std::set<std::string>{"lammps", "event_driven"}));
+  const std::string resolved = load(kMinimalCase).resolved_toml();
+  for (const char* leaf :
+       {"max_overlap", "steps_per_contact", "adaptive_stiffness", "collapse_speed",
+        "contact_duration", "contact_speed", "elastic_speed", "max_collision_rate"}) {
+    EXPECT_NE(resolved.find("\n" + std::string(leaf) + " = "), std::string::npos) << leaf;
+    EXPECT_TRUE(key_owner("md." + std::string(leaf)).has_value()) << leaf;
+  }
+  for (const auto& declared : hydro::closure_keys()) {
+    ASSERT_NE(find_key_spec(declared.key()), nullptr) << declared.key();
+    EXPECT_EQ(key_owner(declared.key())->model, declared.closure);
+  }
+  // Keys every scene has belong to no model.
+  for (const char* key : {"md.bins", "md.engine", "physics.area_fraction", "hydro.closure"}) {
+    EXPECT_FALSE(key_owner(key).has_value()) << key;
+  }
+}
+
+// The refusal message of refuse_keys_of_models_not_run ("" if the case passes).
+std::string model_key_error(const std::string& text, const Sets& sets = {}) {
+  const CaseConfig c = load(text, sets);
+  try {
+    refuse_keys_of_models_not_run(c);
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    return message;
+  }
+  return "";
+}
+
+constexpr const char* kEventDrivenCase =
+    "[physics]\nK = 1e-3\nq = 0.1\n\n[md]\nenabled = true\nengine = \"event_driven\"\n";
+
+TEST(ModelKeys, AKeyOfAnEngineTheCaseDoesNotRunIsRefused) {
+  // By --set: the message names the key, its value and both engines.
+  EXPECT_EQ(model_key_error(kEventDrivenCase, {"md.max_overlap=0.02"}),
+            "--set md.max_overlap=0.02: md.max_overlap = 0.02: a key of md.engine = \"lammps\", "
+            "but this case runs md.engine = \"event_driven\" (from cases/x.toml:7:10)");
+  // In the case file.
+  const std::string in_file =
+      model_key_error(std::string(kEventDrivenCase) + "steps_per_contact = 40\n");
+  EXPECT_EQ(in_file.rfind("cases/x.toml:8:", 0), 0u) << in_file;
+  EXPECT_NE(in_file.find("md.steps_per_contact = 40: a key of md.engine = \"lammps\""),
+            std::string::npos)
+      << in_file;
+  // The other way round, with the engine from its default.
+  EXPECT_EQ(model_key_error("[physics]\nK = 1e-3\nq = 0.1\n[md]\nenabled = true\n",
+                            {"md.collapse_speed=1"}),
+            "--set md.collapse_speed=1: md.collapse_speed = 1.0: a key of md.engine = "
+            "\"event_driven\", but this case runs md.engine = \"lammps\" (default)");
+  // A switch to the other engine over a case that tunes the first is refused too.
+  EXPECT_NE(model_key_error(std::string(kEventDrivenCase) + "contact_duration = 10.0\n",
+                            {"md.engine=\"lammps\""})
+                .find("md.contact_duration = 10.0: a key of md.engine = \"event_driven\""),
+            std::string::npos);
+}
+
+TEST(ModelKeys, OwnKeysDefaultValuesAndPartsThatDoNotRunPass) {
+  // The engine's own keys.
+  EXPECT_EQ(model_key_error(kEventDrivenCase, {"md.collapse_speed=0.1", "md.max_collision_rate=5"}),
+            "");
+  // Another engine's key at its default changes nothing: every resolved case.toml lists it.
+  EXPECT_EQ(
+      model_key_error(kEventDrivenCase, {"md.max_overlap=0.01", "md.adaptive_stiffness=true"}), "");
+  const CaseConfig resolved = load(kEventDrivenCase, {"md.collapse_speed=0.1"});
+  EXPECT_EQ(model_key_error(resolved.resolved_toml()), "");
+  // No particle engine runs: [md] is not read, none of its keys is refused.
+  EXPECT_EQ(model_key_error(kMinimalCase, {"md.max_overlap=0.02", "md.collapse_speed=1"}), "");
 }
 
 }  // namespace

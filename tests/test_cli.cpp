@@ -455,6 +455,49 @@ TEST(CliSweep, BadSweepsExitTwoWithOneLineAndWriteNothing) {
   }
 }
 
+// A key that another particle engine declares as its own (md_bridge/*_engine.cpp, keys()) is
+// refused where the case runs one engine: in `run` (--dry-run too) and in every point of a
+// `sweep`, whether it comes from --set or from the case file; one line, exit 2, nothing
+// written. --dry-run lists every engine's keys.
+TEST(CliModelKeys, AKeyOfTheEngineTheCaseDoesNotRunIsRefused) {
+  ScratchFolder scratch("model-keys");
+  const fs::path out = scratch.path / "out";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"run md_paper_scene --dry-run --set md.max_overlap=0.02",
+       {"--set md.max_overlap=0.02: md.max_overlap = 0.02: a key of md.engine = \"lammps\", "
+        "but this case runs md.engine = \"event_driven\" (from "}},
+      {"run md_paper_scene --set md.max_overlap=0.02 --out " + q(out),
+       {"md.max_overlap = 0.02", "md.engine = \"event_driven\""}},
+      {"run md_cooling_sweep --set md.engine=event_driven --out " + q(out),
+       {"md_cooling_sweep.toml:", "md.max_overlap = 0.02: a key of md.engine = \"lammps\"",
+        "(from --set md.engine=event_driven)"}},
+      {"sweep md_paper_scene --set md.max_overlap=0.005,0.02 --out " + q(out),
+       {"md.max_overlap = 0.005: a key of md.engine = \"lammps\""}},
+      {"sweep md_haff --set md.collapse_speed=0.1,1 --out " + q(out),
+       {"md.collapse_speed = 0.1: a key of md.engine = \"event_driven\"",
+        "md.engine = \"lammps\" (default)"}},
+  };
+  for (const auto& [args, expected] : cases) {
+    SCOPED_TRACE(args);
+    const CliStreams r = run_cli_streams(args);
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    const auto lines = lines_of(r.err);
+    ASSERT_EQ(lines.size(), 1u) << describe(r);
+    EXPECT_TRUE(starts_with(lines[0], "granvv: error: ")) << lines[0];
+    for (const auto& e : expected) EXPECT_TRUE(contains(lines[0], e)) << lines[0];
+    EXPECT_FALSE(fs::exists(out)) << "a refused case created its folder";
+  }
+  // The engine's own keys pass, and --dry-run lists both engines' keys with their defaults.
+  const CliStreams own =
+      run_cli_streams("run md_paper_scene --dry-run --set md.collapse_speed=0.1");
+  ASSERT_EQ(own.exit_code, 0) << describe(own);
+  for (const char* line :
+       {"\nmax_overlap = 0.01 ", "\nsteps_per_contact = 30 ", "\nadaptive_stiffness = true ",
+        "\ncollapse_speed = 0.1 ", "\nmax_collision_rate = 2.0 "}) {
+    EXPECT_TRUE(contains(own.out, line)) << line;
+  }
+}
+
 TEST(CliReportCommand, FolderWithoutResultsExitsTwo) {
   ScratchFolder scratch("report-no-results");
   const CliStreams r = run_cli_streams("report " + q(scratch.path));
