@@ -12,11 +12,10 @@
 #include "app/case_config.hpp"
 #include "app/model.hpp"
 #include "compare/model_comparison.hpp"
+#include "fields/constants.hpp"
 
 namespace granvv::app {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 HydroScene scene_of(const std::string& file, const std::vector<std::string>& sets) {
   return hydro_scene_from(
