@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fields/constants.hpp"
 namespace granvv::compare {
 
 std::complex<double> bin_fourier_coefficient(const std::vector<double>& values, int k) {
@@ -10,7 +11,7 @@ std::complex<double> bin_fourier_coefficient(const std::vector<double>& values, 
   const double dx = 1.0 / values.size();
   for (std::size_t b = 0; b < values.size(); ++b) {
     const double x = -0.5 + (b + 0.5) * dx;
-    c += values[b] * dx * std::exp(std::complex<double>(0.0, -2.0 * M_PI * k * x));
+    c += values[b] * dx * std::exp(std::complex<double>(0.0, -2.0 * kPi * k * x));
   }
   return c;
 }

@@ -41,8 +41,7 @@ fields::FieldSeries ensemble_field_series(const std::vector<fields::FieldSeries>
 }
 
 const std::vector<std::string>& fields_with_errors() {
-  static const std::vector<std::string> names = {"n", "v_x", "v_y", "T"};
-  return names;
+  return fields::hydrodynamic_fields();
 }
 
 EnsembleMeanFields ensemble_mean_fields(const std::vector<fields::FieldSeries>& members,

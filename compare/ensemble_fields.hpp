@@ -34,7 +34,8 @@ struct EnsembleMeanFields {
   fields::FieldSeries fields;
   std::vector<std::vector<std::string>> error_source;
 };
-const std::vector<std::string>& fields_with_errors();  // n, v_x, v_y, T
+// The fields whose errors are calibrated: fields::hydrodynamic_fields() (n, v_x, v_y, T).
+const std::vector<std::string>& fields_with_errors();
 EnsembleMeanFields ensemble_mean_fields(const std::vector<fields::FieldSeries>& members,
                                         const ScaledUnits& units);
 

@@ -40,7 +40,7 @@ std::vector<std::pair<std::size_t, std::size_t>> common_snapshots(
   for (std::size_t i = 0; i < reference.snapshots.size(); ++i) {
     const double t = reference.snapshots[i].t;
     for (std::size_t j = 0; j < candidate.snapshots.size(); ++j) {
-      if (std::abs(candidate.snapshots[j].t - t) <= 1e-9 * std::max(1.0, t)) {
+      if (fields::same_time(candidate.snapshots[j].t, t)) {
         pairs.emplace_back(i, j);
         break;
       }
@@ -89,7 +89,7 @@ ModelComparison compare_models(const fields::ModelResult& reference,
     if (!pairs.empty()) {
       const auto &r = reference.fields->snapshots[pairs.front().first],
                  &k = candidate.fields->snapshots[pairs.front().second];
-      for (const char* name : {"n", "v_x", "v_y", "T"}) {
+      for (const std::string& name : fields::hydrodynamic_fields()) {
         const auto& c = fields::field_column(name);
         if (!(r.*c.values).empty() && !(k.*c.values).empty()) names.push_back(name);
       }

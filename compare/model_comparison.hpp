@@ -21,7 +21,7 @@ namespace granvv::compare {
 double field_scale(const std::string& field, const fields::FieldSnapshot& reference,
                    const fields::FieldSnapshot& candidate);
 
-// Snapshot pairs of two series at equal times (|dt| <= 1e-9 max(1, t)), in the reference's order.
+// Snapshot pairs of two series at equal times (fields::same_time), in the reference's order.
 std::vector<std::pair<std::size_t, std::size_t>> common_snapshots(
     const fields::FieldSeries& reference, const fields::FieldSeries& candidate);
 

@@ -7,8 +7,11 @@
 namespace granvv::compare {
 
 std::vector<std::string> compared_fields(bool transverse) {
-  if (transverse) return {"n", "v_x", "v_y", "T"};
-  return {"n", "v_x", "T"};
+  std::vector<std::string> names;
+  for (const std::string& name : fields::hydrodynamic_fields()) {
+    if (transverse || name != "v_y") names.push_back(name);  // v_y: the transverse flow
+  }
+  return names;
 }
 
 SideBySide judge_side_by_side(const fields::FieldSeries& particles,

@@ -22,8 +22,8 @@ struct SideBySide {
   Disagreement kind = Disagreement::none;
 };
 
-// The fields a side-by-side comparison weighs: n, v_x, T, and v_y when the hydro carries the
-// transverse flow.
+// The fields a side-by-side comparison weighs: the hydrodynamic fields (n, v_x, T, and v_y when
+// the hydro carries the transverse flow).
 std::vector<std::string> compared_fields(bool transverse);
 
 // The particles' ensemble mean (with the standard errors of that mean) against the hydro on

@@ -30,6 +30,13 @@ struct FieldSnapshot {
   std::vector<double> P_xx, P_yy, P_xx_stderr, P_yy_stderr;
 };
 
+// Two snapshots are at the same time when their times differ by at most kSameTimeTolerance
+// max(1, |reference|): one time, written in one model's units and read in another's, differs
+// only by the rounding of the unit conversion (sigma sqrt(m/T0) to Lx / sqrt(T0/m)). A time that
+// is the nearest step of an engine is another matter (its engine's time resolution).
+inline constexpr double kSameTimeTolerance = 1e-9;
+bool same_time(double t, double reference);
+
 struct FieldSeries {
   Geometry geometry = Geometry::cells;
   std::vector<double> bin_edges;  // bins only: B + 1 edges of the periodic grid
@@ -45,8 +52,13 @@ struct FieldColumn {
   const char* name;
   std::vector<double> FieldSnapshot::*values;
   std::vector<double> FieldSnapshot::*standard_error;
+  bool hydrodynamic = false;  // one of the hydrodynamic fields (below)
 };
 const std::vector<FieldColumn>& field_columns();
+// The names of the hydrodynamic fields n, v_x, v_y, T (in the order of field_columns()): the
+// fields the hydro and the particles both carry (v_y where the model has transverse flow), that
+// a comparison weighs and whose errors the ensemble calibrates.
+const std::vector<std::string>& hydrodynamic_fields();
 // The column called name ("n", "v_x", ...); throws std::invalid_argument for another name.
 const FieldColumn& field_column(const std::string& name);
 

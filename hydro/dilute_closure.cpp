@@ -1,5 +1,6 @@
 #include "hydro/dilute_closure.hpp"
 
+#include "fields/constants.hpp"
 #include "hydro/haff.hpp"
 
 namespace granvv::hydro {
@@ -63,7 +64,6 @@ HcsLinearisation DiluteClosure::hcs_linearisation() const {
   h.cooling_density = 2.0 * h.epsilon;  // Lambda/n = 8q/K
   h.cooling_temperature = h.epsilon;    // (3/2 - 1) Lambda = 4q/K
   // det A = -kx^2 (K kx^2 - eps) and eps - K kx^2/4: pi k K < sqrt(q g), < 2 sqrt(q g).
-  constexpr double kPi = 3.14159265358979323846;
   h.clustering_cutoff_mode = std::sqrt(q_eff) / (kPi * physics_.K);
   h.shear_cutoff_mode = 2.0 * std::sqrt(q_eff) / (kPi * physics_.K);
   return h;

@@ -120,8 +120,8 @@ HcsLinearisation EnskogClosure::hcs_linearisation() const {
       (h.pressure_temperature * h.cooling_density - h.pressure_density * h.cooling_temperature) /
       (h.pressure_density * h.conductivity);
   const double shear_kx2 = h.epsilon / h.shear_viscosity;
-  h.clustering_cutoff_mode = std::sqrt(std::max(clustering_kx2, 0.0)) / (2.0 * enskog::kPi);
-  h.shear_cutoff_mode = std::sqrt(std::max(shear_kx2, 0.0)) / (2.0 * enskog::kPi);
+  h.clustering_cutoff_mode = std::sqrt(std::max(clustering_kx2, 0.0)) / (2.0 * kPi);
+  h.shear_cutoff_mode = std::sqrt(std::max(shear_kx2, 0.0)) / (2.0 * kPi);
   return h;
 }
 

@@ -15,13 +15,13 @@
 // With the internal energy T per particle the adiabat is d ln T = F_p d ln n, so the squared
 // adiabatic sound speed is c^2 = d p/d n |_s = T (F_p + F_p^2 + phi dF_p/dphi).
 
+#include "fields/constants.hpp"
+
 namespace granvv::hydro::enskog {
 
 // Past this area fraction hard disks freeze (fluid-solid coexistence begins near phi = 0.69;
 // docs/physics.md §9) and the fluid closure no longer applies.
 inline constexpr double kFreezingAreaFraction = 0.69;
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 inline double chi(double phi) {
   const double hole = 1.0 - phi;

@@ -8,11 +8,12 @@
 #include <utility>
 #include <vector>
 
+#include "fields/constants.hpp"
+
 namespace granvv::hydro {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kRefinedMinima = 8;

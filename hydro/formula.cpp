@@ -2,6 +2,8 @@
 
 #include <muParser.h>
 
+#include "fields/constants.hpp"
+
 namespace granvv::hydro {
 
 struct Formula::Compiled {
@@ -12,7 +14,6 @@ struct Formula::Compiled {
 
 Formula::Formula(const std::string& text, const NamedReals& constants)
     : compiled_(std::make_shared<Compiled>()) {
-  constexpr double kPi = 3.14159265358979323846;
   Compiled& c = *compiled_;
   c.text = text;
   for (const auto& [name, value] : constants) {

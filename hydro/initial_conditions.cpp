@@ -3,14 +3,11 @@
 #include <cmath>
 #include <utility>
 
+#include "fields/constants.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
-
 InitialFields uniform_fields() {
   InitialFields f;
   f.n = [](double) { return 1.0; };

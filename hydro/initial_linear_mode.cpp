@@ -3,6 +3,7 @@
 // the chosen branch; the run measures its growth rate against the dispersion relation.
 #include <complex>
 
+#include "fields/constants.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/linear_stability.hpp"
 
@@ -18,7 +19,6 @@ InitialConditionType linear_mode_initial_condition() {
       {"linear_branch", 0LL, ParameterRange::closed(0, 2), "eigenvalue branch, 0 = most unstable"},
   };
   type.generate = [](const ParameterSet& p, const Closure& closure) {
-    constexpr double kPi = 3.14159265358979323846;
     const int mode = static_cast<int>(p.integer("mode"));
     const auto modes = hcs_modes(closure, mode);
     const Eigen::Vector3cd V =

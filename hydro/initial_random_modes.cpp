@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "fields/constants.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
@@ -19,7 +20,6 @@ InitialConditionType random_modes_initial_condition() {
       {"seed", 1LL, ParameterRange::at_least(0), "random seed"},
   };
   type.generate = [](const ParameterSet& p, const Closure&) {
-    constexpr double kPi = 3.14159265358979323846;
     std::mt19937_64 rng(static_cast<unsigned long long>(p.integer("seed")));
     auto uniform01 = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
     struct Series {

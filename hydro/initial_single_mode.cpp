@@ -1,6 +1,7 @@
 // Paper Eq. (7): n = T = 1, v = a sin(2 pi k x); its flow by inertia (paper Eq. 5) is exact.
 #include <cmath>
 
+#include "fields/constants.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
@@ -13,7 +14,6 @@ InitialConditionType single_mode_initial_condition() {
       {"mode", 1LL, ParameterRange::at_least(1), "wave number k"},
   };
   type.generate = [](const ParameterSet& p, const Closure&) {
-    constexpr double kPi = 3.14159265358979323846;
     InitialFields f = uniform_fields();
     const double a = p.real("velocity_amplitude"), kx = 2.0 * kPi * p.integer("mode");
     f.v = [a, kx](double x) { return a * std::sin(kx * x); };

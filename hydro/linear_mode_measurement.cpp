@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "fields/constants.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
 #include "hydro/singularity_analysis.hpp"
@@ -10,7 +11,7 @@ namespace granvv::hydro {
 
 Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& closure, int k) {
   using cd = std::complex<double>;
-  const double kx = 2.0 * M_PI * k;
+  const double kx = 2.0 * kPi * k;
   const double TH = haff_temperature(s.t, haff_time_scale(closure));
   const int n = s.cells();
   auto e = [kx](double x) { return std::exp(cd(0.0, -kx * x)); };
@@ -40,7 +41,7 @@ MeasuredRate measure_linear_rate(const std::vector<LagrangianState>& snapshots,
     s.push_back(collision_clock(snap.t, t0));
     log_modulus.push_back(std::log(std::abs(cb)));
     double p = std::arg(cb);
-    if (!phase.empty()) p += 2.0 * M_PI * std::round((phase.back() - p) / (2.0 * M_PI));
+    if (!phase.empty()) p += 2.0 * kPi * std::round((phase.back() - p) / (2.0 * kPi));
     phase.push_back(p);
   }
   MeasuredRate r;

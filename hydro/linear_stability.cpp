@@ -8,13 +8,12 @@
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "fields/constants.hpp"
 #include "hydro/dilute_closure.hpp"
 
 namespace granvv::hydro {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void require_valid(const Physics& physics) {
   if (!(std::isfinite(physics.K) && physics.K > 0.0)) {
@@ -79,10 +78,10 @@ bool mode_below_cutoff(const Physics& physics, int k, double factor) {
   return compare_with_cutoff(physics, k, factor) < 0;
 }
 
-int count_below_cutoff(const Physics& physics, double factor) {
-  require_valid(physics);
+// The modes k >= 1 with pi^2 k^2 K^2 < factor q, from the dilute closure's cutoff mode
+// sqrt(factor q)/(pi K), settled by the exact test. Call with physics checked by require_valid.
+int count_below_cutoff(const Physics& physics, double factor, double cutoff) {
   if (physics.q == 0.0) return 0;
-  const double cutoff = std::sqrt(factor * physics.q) / (kPi * physics.K);
   if (!(cutoff < static_cast<double>(INT_MAX) - 2.0)) {
     throw std::overflow_error(
         "linear stability: more than INT_MAX unstable modes (K = " + std::to_string(physics.K) +
@@ -196,11 +195,11 @@ double shear_rate(const Physics& physics, int k) {
 }
 
 double clustering_cutoff_mode(const Physics& physics) {
-  return std::sqrt(physics.q) / (kPi * physics.K);
+  return clustering_cutoff_mode(DiluteClosure(physics));
 }
 
 double shear_cutoff_mode(const Physics& physics) {
-  return 2.0 * std::sqrt(physics.q) / (kPi * physics.K);
+  return shear_cutoff_mode(DiluteClosure(physics));
 }
 
 double clustering_cutoff_mode(const Closure& closure) {
@@ -228,11 +227,13 @@ bool shear_mode_unstable(const Physics& physics, int k) {
 }
 
 int clustering_unstable_modes(const Physics& physics) {
-  return count_below_cutoff(physics, 1.0);
+  require_valid(physics);
+  return count_below_cutoff(physics, 1.0, clustering_cutoff_mode(physics));
 }
 
 int shear_unstable_modes(const Physics& physics) {
-  return count_below_cutoff(physics, 4.0);
+  require_valid(physics);
+  return count_below_cutoff(physics, 4.0, shear_cutoff_mode(physics));
 }
 
 Eigen::Vector3cd hcs_linear_evolution(const Closure& closure, int k,

@@ -85,7 +85,7 @@ std::array<HcsMode, 3> hcs_modes_kx(const Physics& physics, double kx);
 double shear_rate(const Closure& closure, int k);
 double shear_rate(const Physics& physics, int k);
 
-// Real-valued mode cutoffs sqrt(q)/(pi K) and 2 sqrt(q)/(pi K).
+// Real-valued mode cutoffs sqrt(q)/(pi K) and 2 sqrt(q)/(pi K): the dilute closure's (below).
 double clustering_cutoff_mode(const Physics& physics);
 double shear_cutoff_mode(const Physics& physics);
 // The same for any closure (HcsLinearisation::clustering_cutoff_mode, shear_cutoff_mode): the

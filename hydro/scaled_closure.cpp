@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "fields/constants.hpp"
 namespace granvv::hydro {
 namespace {
 
@@ -53,7 +54,6 @@ HcsLinearisation ScaledClosure::hcs_linearisation() const {
   h.epsilon *= factors_.cooling;
   h.cooling_density *= factors_.cooling;
   h.cooling_temperature *= factors_.cooling;
-  constexpr double kTwoPi = 6.28318530717958647692;
   const double clustering =
       (h.pressure_temperature * h.cooling_density / h.pressure_density - h.cooling_temperature) /
       h.conductivity;

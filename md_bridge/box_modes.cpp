@@ -6,14 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "fields/constants.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::md {
-
-namespace {
-constexpr double kTwoPi = 6.28318530717958647692;
-}
 
 const std::vector<std::pair<int, int>>& box_mode_wave_vectors() {
   static const std::vector<std::pair<int, int>> k = {{1, 0},  {0, 1}, {1, 1},

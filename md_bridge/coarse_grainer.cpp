@@ -9,12 +9,13 @@
 #include <string>
 #include <utility>
 
+#include "fields/constants.hpp"
+
 namespace granvv::md {
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPi = 3.14159265358979323846;
 // The Gaussian is cut at three standard deviations (it keeps 99.73 % of the weight; the
 // discrete normalisation below restores the rest).
 constexpr double kGaussianCut = 3.0;

@@ -6,11 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fields/constants.hpp"
+
 namespace granvv::md {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Shortest readable form of a value for error messages ("1.2", "nan", "-inf").
 std::string show(double value) {

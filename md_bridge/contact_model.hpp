@@ -23,18 +23,23 @@
 // so they are written as 0 with xmu = 0 and dampflag = 0; `limit_damping` clips the
 // attractive end of the contact (ccel < 0 -> 0) and raises r above the formula: not used.
 // `pair_coeff * *` takes no coefficients for the gran styles.
+#include <limits>
 #include <string>
 
 namespace granvv::md {
 
-// What the caller asks for (MD units: sigma, m, sqrt(T0/m)).
+// What the caller asks for (MD units: sigma, m, sqrt(T0/m)). The case's knobs (md.restitution,
+// md.max_overlap, md.steps_per_contact: their defaults are the case keys') and the speed to
+// resolve have no default here: they are unset (NaN, 0) until the caller sets them, and
+// validate() refuses a spec that leaves one unset.
 struct ContactSpec {
-  double restitution = 0.9;        // target normal restitution r in (0, 1]
-  double mass = 1.0;               // m of each disk (> 0)
-  double diameter = 1.0;           // sigma (> 0)
-  double max_overlap = 0.01;       // delta_max, a length (default 0.01 sigma for sigma = 1)
-  double max_relative_speed = 10;  // u_max: fastest relative normal speed to resolve
-  int steps_per_contact = 30;      // n = tc/dt, at least 10
+  static constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
+  double restitution = kUnset;         // target normal restitution r in (0, 1]
+  double mass = 1.0;                   // m of each disk (> 0)
+  double diameter = 1.0;               // sigma (> 0)
+  double max_overlap = kUnset;         // delta_max, a length
+  double max_relative_speed = kUnset;  // u_max: fastest relative normal speed to resolve
+  int steps_per_contact = 0;           // n = tc/dt, at least 10
   // Correct gamma_n for the discrete integrator (see leapfrog_restitution); false gives the
   // continuum formula, whose r is low by O(1/n) (0.4966 for r = 0.5 at n = 30).
   bool discrete_correction = true;

@@ -2,13 +2,10 @@
 
 #include <cmath>
 
+#include "fields/constants.hpp"
 #include "hydro/enskog_factors.hpp"
 
 namespace granvv::md {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 double henderson_compressibility(double phi) {
   return hydro::enskog::pressure_factor(phi, 1.0);

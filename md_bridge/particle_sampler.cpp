@@ -8,10 +8,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fields/constants.hpp"
+
 namespace granvv::md {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kProfilePoints = 8192;  // tabulation of n(x) for the inverse CDF
 constexpr int kMaxTries = 10000;
 

@@ -3,14 +3,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "fields/constants.hpp"
 #include "hydro/enskog_factors.hpp"
 #include "hydro/linear_stability.hpp"
 
 namespace granvv::md {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
-
 double ParticleScene::number_density() const {
   return particles / (box_length * box_width);
 }

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "fields/constants.hpp"
 #include "md_bridge/coarse_grainer.hpp"
 #include "md_bridge/moment_reduction.hpp"
 
@@ -27,7 +28,7 @@ using granvv::md::CoarseGrainer;
 using granvv::md::CoarseGrainGrid;
 using granvv::md::Moments;
 
-constexpr double kPi = 3.14159265358979323846;
+using granvv::kPi;
 
 // Particles in the LAMMPS layout (x[3 i + 0..2], v[3 i + 0..2]) with per-particle masses.
 struct Particles {

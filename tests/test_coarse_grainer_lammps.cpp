@@ -14,6 +14,7 @@
 #include "md_bridge/disk_gas.hpp"
 #include "md_bridge/lammps_session.hpp"
 #include "md_bridge/particle_sampler.hpp"
+#include "support/contact_spec.hpp"
 
 namespace granvv::md {
 namespace {
@@ -28,7 +29,7 @@ TEST(CoarseGrainerAgainstLammps, BinsMatchChunkComputesOnTheSameState) {
   const int bins = 25;
 
   LammpsSession lmp;
-  ContactSpec c;
+  ContactSpec c = granvv::testing::test_contact_spec();
   c.restitution = 0.9;
   set_up_disk_gas(lmp, lx, ly, sample, make_contact_model(c));
   auto num = [](double x) { return lammps_number(x); };

@@ -19,6 +19,7 @@
 #include "compare/ensemble_statistics.hpp"
 #include "compare/field_metrics.hpp"
 #include "compare/power_law_fit.hpp"
+#include "fields/constants.hpp"
 
 namespace {
 
@@ -38,7 +39,7 @@ using granvv::fields::FieldSnapshot;
 using granvv::hydro::InitialFields;
 using granvv::hydro::LagrangianState;
 
-constexpr double kPi = 3.14159265358979323846;
+using granvv::kPi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 

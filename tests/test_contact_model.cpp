@@ -10,13 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "fields/constants.hpp"
 #include "md_bridge/contact_model.hpp"
+#include "support/contact_spec.hpp"
 
 namespace {
 
 using namespace granvv::md;
 
-constexpr double kPi = 3.14159265358979323846;
+using granvv::kPi;
+using granvv::testing::test_contact_spec;
 
 std::string message_of(const ContactSpec& spec) {
   try {
@@ -183,7 +186,7 @@ TEST(ContactModel, PhaseAveragedVerletCollisionMatchesTheLeapfrogFormula) {
   // O(1/n) (3.4e-3 for r = 0.5 at n = 30).
   for (const double r : {0.5, 0.7, 0.9, 0.98}) {
     for (const bool correct : {true, false}) {
-      ContactSpec spec;
+      ContactSpec spec = test_contact_spec();
       spec.restitution = r;
       spec.discrete_correction = correct;
       const ContactModel m = make_contact_model(spec);
@@ -205,7 +208,7 @@ TEST(ContactModel, PhaseAveragedVerletCollisionMatchesTheLeapfrogFormula) {
       EXPECT_LT(hi - lo, 2.0 * m.gamma_n * m.dt) << "r = " << r;
     }
   }
-  ContactSpec half;
+  ContactSpec half = test_contact_spec();
   half.restitution = 0.5;
   half.discrete_correction = false;
   const ContactModel continuum = make_contact_model(half);
@@ -215,7 +218,7 @@ TEST(ContactModel, PhaseAveragedVerletCollisionMatchesTheLeapfrogFormula) {
 }
 
 TEST(ContactModel, DefaultModelFromTheSpec) {
-  const ContactSpec spec;  // r = 0.9, m = sigma = 1, delta_max = 0.01, u_max = 10, n = 30
+  const ContactSpec spec = test_contact_spec();
   const ContactModel m = make_contact_model(spec);
   const double margin = 1.0 + kPi * kPi / (6.0 * 30 * 30);
   EXPECT_NEAR(m.kn, 0.5 * 1e6 * margin * margin, 1e-12 * m.kn);
@@ -254,7 +257,7 @@ TEST(ContactModel, VerletOverlapStaysBelowTheBoundAtTheFastestSpeed) {
   // The kn margin covers the discrete overshoot of the contact start (worst for r = 1).
   for (const double r : {0.5, 0.98, 1.0}) {
     for (const int n : {10, 30}) {
-      ContactSpec spec;
+      ContactSpec spec = test_contact_spec();
       spec.restitution = r;
       spec.steps_per_contact = n;
       const ContactModel m = make_contact_model(spec);
@@ -269,44 +272,49 @@ TEST(ContactModel, VerletOverlapStaysBelowTheBoundAtTheFastestSpeed) {
 }
 
 TEST(ContactModel, SpecValidationNamesKeyValueAndRange) {
-  ContactSpec s;
+  ContactSpec s = test_contact_spec();
   s.restitution = 1.2;
   EXPECT_EQ(message_of(s), "md.restitution = 1.2: must be in (0, 1]");
   for (const double bad : {0.0, -0.5, std::numeric_limits<double>::quiet_NaN()}) {
     s.restitution = bad;
     EXPECT_NE(message_of(s).find("md.restitution"), std::string::npos) << bad;
   }
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.mass = 0.0;
   EXPECT_EQ(message_of(s), "md.mass = 0: must be finite and > 0");
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.diameter = -1.0;
   EXPECT_EQ(message_of(s), "md.diameter = -1: must be finite and > 0");
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.max_overlap = 0.0;
   EXPECT_EQ(message_of(s),
             "md.max_overlap = 0: must be in (0, 0.1] (at most 0.1 sigma: the hard-disk limit)");
   s.max_overlap = 0.2;
   EXPECT_NE(message_of(s).find("md.max_overlap = 0.2"), std::string::npos);
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.max_relative_speed = -3.0;
   EXPECT_EQ(message_of(s), "md.max_relative_speed = -3: must be finite and > 0");
   s.max_relative_speed = std::numeric_limits<double>::infinity();
   EXPECT_EQ(message_of(s), "md.max_relative_speed = inf: must be finite and > 0");
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.steps_per_contact = 9;
   EXPECT_EQ(message_of(s),
             "md.steps_per_contact = 9: must be an integer in [10, 1000000] (time steps per "
             "contact duration)");
   s.steps_per_contact = 10;
   EXPECT_EQ(message_of(s), "");
-  s = ContactSpec{};
+  s = test_contact_spec();
   s.restitution = 1.0;
   EXPECT_EQ(message_of(s), "");
+  // The case's knobs have no default in a ContactSpec: one left unset is refused by name.
+  EXPECT_EQ(message_of(ContactSpec{}), "md.restitution = nan: must be in (0, 1]");
+  s = test_contact_spec();
+  s.steps_per_contact = ContactSpec{}.steps_per_contact;
+  EXPECT_NE(message_of(s).find("md.steps_per_contact = 0"), std::string::npos);
 }
 
 TEST(ContactModel, ModelValidationGuardsWhatReachesLammps) {
-  const ContactModel good = make_contact_model(ContactSpec{});
+  const ContactModel good = make_contact_model(test_contact_spec());
   EXPECT_NO_THROW(validate(good));
   auto m = good;
   m.dt = 0.0;
@@ -331,7 +339,7 @@ TEST(ContactModel, ModelValidationGuardsWhatReachesLammps) {
 }
 
 TEST(ContactModel, LammpsCommandsHaveFrictionOffAndExactNumbers) {
-  const ContactModel m = make_contact_model(ContactSpec{});
+  const ContactModel m = make_contact_model(test_contact_spec());
   const std::string style = pair_style_command(m);
   std::istringstream in(style);
   std::vector<std::string> t;

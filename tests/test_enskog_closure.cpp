@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fields/constants.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/driver.hpp"
 #include "hydro/enskog_closure.hpp"
@@ -20,7 +21,6 @@ namespace granvv::hydro {
 namespace {
 
 using granvv::testing::rk4;
-constexpr double kPi = M_PI;
 
 // The formulas, written out independently of hydro/enskog_factors.hpp.
 double chi_formula(double phi) {

@@ -9,8 +9,10 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "compare/ensemble_fields.hpp"
+#include "compare/side_by_side.hpp"
 #include "fields/field_series.hpp"
 #include "fields/field_series_file.hpp"
 #include "hydro/cell_fields.hpp"
@@ -191,6 +193,30 @@ TEST(FieldSeries, AGroupWithoutTheLayoutIsRefused) {
   EXPECT_ANY_THROW(granvv::fields::read_field_series(g));
   fs::remove(file);
   EXPECT_THROW(granvv::fields::field_column("rho"), std::invalid_argument);
+}
+
+TEST(FieldSeries, HydrodynamicFieldsAreTheColumnsEveryComparisonWeighs) {
+  const std::vector<std::string> expected = {"n", "v_x", "v_y", "T"};
+  EXPECT_EQ(granvv::fields::hydrodynamic_fields(), expected);
+  EXPECT_EQ(granvv::compare::fields_with_errors(), expected);
+  for (const auto& name : expected) {
+    EXPECT_NE(granvv::fields::field_column(name).standard_error, nullptr) << name;
+  }
+  EXPECT_EQ(granvv::compare::compared_fields(true), expected);
+  EXPECT_EQ(granvv::compare::compared_fields(false), (std::vector<std::string>{"n", "v_x", "T"}));
+}
+
+TEST(FieldSeries, SameTimeIsEqualUpToTheRoundingOfAUnitConversion) {
+  using granvv::fields::same_time;
+  // A time in sigma sqrt(m/T0) converted to Lx / sqrt(T0/m) and back: a few ulp apart.
+  const double lx = 396.07, t = 45.0 / lx;
+  EXPECT_TRUE(same_time(t * lx / lx, t));
+  EXPECT_TRUE(same_time(1.0 + 5e-10, 1.0));  // 1e-9 relative to max(1, t)
+  EXPECT_FALSE(same_time(1.0 + 2e-9, 1.0));
+  EXPECT_TRUE(same_time(5e-10, 0.0));  // absolute below t = 1
+  EXPECT_FALSE(same_time(2e-9, 0.0));
+  EXPECT_TRUE(same_time(1000.0 * (1.0 + 5e-10), 1000.0));
+  EXPECT_FALSE(same_time(1000.0 * (1.0 + 2e-9), 1000.0));
 }
 
 TEST(EnsembleFieldSeries, MeanAndStandardErrorOfTwoMembersByHand) {

@@ -8,12 +8,13 @@
 #include <limits>
 #include <vector>
 
+#include "fields/constants.hpp"
 #include "hydro/flow_by_inertia.hpp"
 
 namespace {
 
+using granvv::kPi;
 using granvv::hydro::FlowByInertia;
-constexpr double kPi = 3.14159265358979323846;
 
 // Periodic trapezoid rule on [-1/2, 1/2): exponentially convergent for analytic periodic
 // integrands, with rate set by the distance of the nearest complex singularity (~ the width of

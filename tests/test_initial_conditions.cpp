@@ -5,14 +5,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fields/constants.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "scene/case_schema.hpp"
 
 namespace granvv::hydro {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ParameterSet with_transverse(ParameterSet values, double b = 0.0, long long k = 1) {
   values.set("transverse_amplitude", b);

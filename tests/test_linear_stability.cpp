@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "fields/constants.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/linear_stability.hpp"
 #include "support/runge_kutta.hpp"
@@ -20,7 +21,7 @@ namespace {
 using granvv::hydro::Physics;
 using cd = std::complex<double>;
 using Vec = Eigen::Vector3cd;
-constexpr double kPi = 3.14159265358979323846;
+using granvv::kPi;
 constexpr long double kPiL = 3.141592653589793238462643383279502884L;
 
 double max_real_rate(const std::array<granvv::hydro::HcsMode, 3>& modes) {

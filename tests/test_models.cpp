@@ -10,13 +10,12 @@
 #include <vector>
 
 #include "compare/model_comparison.hpp"
+#include "fields/constants.hpp"
 #include "models/model.hpp"
 #include "scene/case_config.hpp"
 
 namespace granvv::app {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 HydroScene scene_of(const std::string& file, const std::vector<std::string>& sets) {
   return hydro_scene_from(

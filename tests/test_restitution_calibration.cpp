@@ -16,13 +16,14 @@
 #include "md_bridge/contact_model.hpp"
 #include "md_bridge/lammps_session.hpp"
 #include "md_bridge/restitution_calibration.hpp"
+#include "support/contact_spec.hpp"
 
 namespace {
 
 using namespace granvv::md;
 
 ContactModel model_for(double r, bool discrete_correction = true) {
-  ContactSpec spec;  // m = sigma = 1, delta_max = 0.01, u_max = 10, 30 steps per contact
+  ContactSpec spec = granvv::testing::test_contact_spec();
   spec.restitution = r;
   spec.discrete_correction = discrete_correction;
   return make_contact_model(spec);

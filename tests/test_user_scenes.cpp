@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "fields/constants.hpp"
 #include "fields/field_series_file.hpp"
 #include "hydro/formula.hpp"
 #include "hydro/initial_condition_registry.hpp"
@@ -25,7 +26,6 @@ namespace granvv {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------------------------
 // Known answers.

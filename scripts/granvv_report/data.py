@@ -20,6 +20,17 @@ import numpy as np
 
 RESULTS, SUMMARY, SWEEP, ATLAS = "results.h5", "summary.json", "sweep.json", "atlas.json"
 
+# The hydrodynamic fields, in the order of the C++ FieldSeries columns (fields/field_series.cpp,
+# hydrodynamic_fields()): the fields the hydro and the particles both carry (v_y where the model has
+# transverse flow) and a side-by-side comparison weighs. Which of them a comparison holds is read from
+# /compare/fields (compared_fields).
+HYDRODYNAMIC_FIELDS = ("n", "v_x", "v_y", "T")
+
+# Two times read from the outputs are the same time within this, relative to max(1, |t|): the C++
+# comparison's kSameTimeTolerance (fields/field_series.hpp). The files write times exactly, so a time
+# of results.h5 equals its copy in summary.json.
+SAME_TIME = 1e-9
+
 
 class ReportError(Exception):
     """Fatal: the report cannot be built at all."""
@@ -160,14 +171,43 @@ def snapshot_labels(fields, ns):
     return [str(x) for x in lab]
 
 
+def same_time(t, reference):
+    """Whether t is the time reference (SAME_TIME)."""
+    return abs(t - reference) <= SAME_TIME * max(1.0, abs(reference))
+
+
 def find_snapshot_summary(run, t):
-    """The summary.json snapshot record closest to time t (within 1e-6 relative)."""
+    """The summary.json snapshot record at time t (same_time)."""
     best = None
     for rec in run.hydro_summary("snapshots") or []:
         tr = num(get(rec, "t"))
-        if tr is not None and abs(tr - t) <= 1e-6 * max(1.0, abs(t)):
+        if tr is not None and same_time(tr, t):
             best = rec
     return best
+
+
+def haff_temperature(t, t0, T0=1.0):
+    """Haff's law T0 (1 + t/t0)^-2 (hydro/haff.hpp), for a t0 read from the outputs: the one place the
+    report evaluates it (the C++ writes the curve at its own samples: /hydro/timeseries haff_T,
+    /md/timeseries haff_theory)."""
+    return T0 * (1 + t / t0) ** -2.0
+
+
+def hydro_t0(run):
+    """(t0, origin): the hydro's Haff time in scaled units (/hydro/theory), or None, and where it came
+    from, for a label: the closure the hydro ran with, and its cooling rate and cooling factor where
+    they are not the paper's ("dilute closure", "enskog closure, exact cooling"). Only the dilute
+    closure with the paper's cooling has t0 = K/4q."""
+    a = run.hydro_theory["attrs"] if run.hydro_theory else {}
+    closure = a.get("closure") or run.hydro_summary("closure")
+    cooling = a.get("cooling") or run.hydro_summary("cooling")
+    factor = num(run.hydro_summary("transport_factors", "cooling"))
+    origin = f"{closure} closure" if closure else "closure"
+    if cooling and cooling != "small_q":
+        origin += f", {cooling} cooling"
+    if factor is not None and factor != 1.0:
+        origin += f", cooling factor {factor:g}"
+    return num(a.get("t0")), origin
 
 
 def md_value(run, key):
@@ -241,6 +281,11 @@ def cmp_box(run):
     C = run.compare
     v = num(C["attrs"].get("box_length")) if C else None
     return v if v is not None else md_value(run, "box_length")
+
+
+def compared_fields(C):
+    """The fields a comparison (/compare, or one closure's) holds, in HYDRODYNAMIC_FIELDS order."""
+    return [f for f in HYDRODYNAMIC_FIELDS if f in C["fields"]]
 
 
 def cmp_rows(g, name, shape):

@@ -8,22 +8,21 @@ import matplotlib.pyplot as plt
 import numpy as np
 from markupsafe import Markup, escape
 
-from .data import (Skip, arr, cmp_box, cmp_data, cmp_rows, cmp_vec, cmp_window, md_members,
-                   md_value, nanmean_rows, num)
+from .data import (Skip, arr, cmp_box, cmp_data, cmp_rows, cmp_vec, cmp_window, compared_fields,
+                   haff_temperature, hydro_t0, md_members, md_value, nanmean_rows, num)
 from .formatting import CMP_FIELD_HTML, fmt, tex_num, verdict
 from .registry import Drawn, figure
 from .validity import mark_validity
-from .style import (CMP_FIELD_TEX, CMP_FIELDS, CMP_HYDRO, CMP_INERTIA, CMP_MAX_TIMES, CMP_MD, T_UNIT,
+from .style import (CMP_FIELD_STYLE, CMP_FIELD_TEX, CMP_HYDRO, CMP_INERTIA, CMP_MAX_TIMES, CMP_MD, T_UNIT,
                     X_UNIT, band, md_time_axis, pick, positive)
 
 
 def cmp_fields(C, t, x):
     """[(key, title, ylabel, colour, hydro, md, md_error or None)] for the compared fields."""
     out = []
-    for key, title, ylabel, colour in CMP_FIELDS:
-        g = C["fields"].get(key)
-        if g is None:
-            continue
+    for key in compared_fields(C):
+        g = C["fields"][key]
+        title, ylabel, colour = CMP_FIELD_STYLE[key]
         h, m = cmp_rows(g, "hydro", (t.size, x.size)), cmp_rows(g, "md", (t.size, x.size))
         if h is None or m is None:
             continue
@@ -221,15 +220,15 @@ def fig_cmp_time(run):
     ts = run.hydro_ts
     th = arr(ts, "t", 2)
     drawn = 0
-    t0h = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None   # the hydro's K/4q
+    t0h, t0h_origin = hydro_t0(run)
     if th is not None:
         eth, ek, eky = arr(ts, "energy_thermal"), arr(ts, "energy_kinetic"), arr(ts, "energy_kinetic_y")
         if eth is not None and eth.size == th.size:
             ax_c.plot(th, positive(eth), color="C3", lw=1.8, label=r"hydro $E_{\rm th}$")
             drawn += 1
             if t0h:
-                ax_c.plot(th, eth[0] * (1 + th / t0h) ** -2.0, color="0.3", lw=1.0, ls=":",
-                          label=rf"Haff $E_{{\rm th}}(0)(1+t/t_0)^{{-2}}$, hydro's $t_0 = K/4q = {tex_num(t0h)}$")
+                ax_c.plot(th, haff_temperature(th, t0h, eth[0]), color="0.3", lw=1.0, ls=":",
+                          label=rf"Haff $E_{{\rm th}}(0)(1+t/t_0)^{{-2}}$, $t_0 = {tex_num(t0h)}$ of the hydro's {t0h_origin}")
         if ek is not None and ek.size == th.size:
             tot = ek + (eky if eky is not None and eky.size == th.size else 0.0)
             ax_c.plot(th, positive(tot), color="C0", lw=1.8, label=r"hydro $E_{\rm kin}$ (flow)")
@@ -302,7 +301,7 @@ def fig_cmp_time(run):
         if vals["hydro_kinetic"] is not None and vals["md_kinetic"] is not None:
             measured.append(("… E<sub>kin</sub> per particle: hydro, MD (binned, noise removed)",
                              Markup(f"{fmt(vals['hydro_kinetic'][last])}, {fmt(vals['md_kinetic'][last])}"), None))
-    measured.append(("hydro's Haff time t<sub>0</sub> = K/4q (scaled; MD units)",
+    measured.append((f"hydro's Haff time t<sub>0</sub>, of its {escape(t0h_origin)} (scaled; MD units)",
                      Markup(f"{fmt(t0h)}; {fmt(num(run.compare_summary('haff', 't0_hydro')))}"), None))
     return Drawn(fig, measured,
                  note=Markup("Green: the agreement window (every field within the chosen σ at every compared time up to "
@@ -327,10 +326,9 @@ def fig_cmp_metrics(run):
     K = t.size
     frac_req, sig = num(C["attrs"].get("agreement_fraction")), num(C["attrs"].get("sigmas"))
     tracks = []
-    for key, title, _ylabel, colour in CMP_FIELDS:
-        g = C["fields"].get(key)
-        if g is None:
-            continue
+    for key in compared_fields(C):
+        g = C["fields"][key]
+        colour = CMP_FIELD_STYLE[key][2]
         d = {k: cmp_vec(g, k, K) for k in ("fraction_within", "worst_z", "l1", "l2", "linf")}
         if all(v is None for v in d.values()):
             continue
@@ -340,7 +338,7 @@ def fig_cmp_metrics(run):
     L = cmp_box(run)
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.4), layout="constrained")
     ax_f, ax_z, ax_n = axes
-    lab = {"n": "$n$", "v_x": "$v_x$", "v_y": "$v_y$", "T": "$T$"}
+    lab = CMP_FIELD_TEX
     ymin = 1.0
     for key, col, d in tracks:
         if d["fraction_within"] is not None:

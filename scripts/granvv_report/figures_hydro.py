@@ -7,7 +7,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from markupsafe import Markup, escape
 
-from .data import Skip, arr, find_snapshot_summary, get, num, snapshot_labels
+from .data import Skip, arr, find_snapshot_summary, get, hydro_t0, num, same_time, snapshot_labels
 from .formatting import fmt, pct, tex_num, verdict, within_tolerance
 from .registry import Drawn, figure
 from .validity import MONITOR_COLUMNS, MONITOR_LABELS, mark_validity
@@ -15,13 +15,25 @@ from .style import (N_UNIT, T_FIELD, T_UNIT, V_UNIT, X_UNIT, marker_every, pick,
                     sorted_periodic, thin, time_colors, tlabel, wrap)
 
 
+def unstable_modes_sentence(run):
+    """For a caption: this run's number of linearly unstable clustering modes (summary.json), with
+    its K, q and closure."""
+    n = run.hydro_summary("unstable_modes")
+    if n is None:
+        return ""
+    K, q, closure = num(run.config("physics.K")), num(run.config("physics.q")), run.hydro_summary("closure")
+    at = f" (K = {fmt(K)}, q = {fmt(q)})" if K is not None and q is not None else ""
+    below = f", below the cut-off of its {escape(closure)} closure" if closure else ""
+    return f" This run{at} has {fmt(n)} linearly unstable clustering modes{below}."
+
+
 @figure(file="fig1_profiles.png", section="hydro", anchor="profiles",
         title='Density and velocity profiles (paper Fig. 1)',
-        caption=('Fig. 1: with K = 4·10<sup>−4</sup>, q = 10<sup>−2</sup> (79 linearly unstable '
-                 'modes) the gas develops high, narrow density peaks with steepening velocity '
-                 'gradients; with 2000 Lagrangian mesh points the major peak holds more than 50 mesh '
-                 'points above n = 10<sup>2</sup> shortly before it becomes singular. The inset shows '
-                 'the earlier density history around the major peak.'))
+        caption=('Fig. 1: with K = 4·10<sup>−4</sup>, q = 10<sup>−2</sup> the gas develops high, '
+                 'narrow density peaks with steepening velocity gradients; with 2000 Lagrangian mesh '
+                 'points the major peak holds more than 50 mesh points above n = 10<sup>2</sup> '
+                 'shortly before it becomes singular. The inset shows the earlier density history '
+                 'around the major peak.{unstable_modes}'))
 def fig_profiles(run):
     """Paper Fig. 1: density (log) and velocity (and temperature) profiles at the output times."""
     F = run.hydro_fields
@@ -123,7 +135,8 @@ def fig_profiles(run):
          fmt(int(np.sum(n[last] > 100))), None),
     ]
     return Drawn(fig, measured,
-                 note=Markup(zoom_text + " Profiles are drawn at cell centres, sorted in x on the periodic domain."))
+                 note=Markup(zoom_text + " Profiles are drawn at cell centres, sorted in x on the periodic domain."),
+                 caption_values=dict(unstable_modes=unstable_modes_sentence(run)))
 
 
 @figure(file="fig2_energy.png", section="hydro", anchor="energy",
@@ -147,7 +160,7 @@ def fig_energy(run):
     pos = t > 0
     if pos.sum() < 2:
         raise Skip("energy time series has fewer than two positive times")
-    t0 = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None
+    t0 = hydro_t0(run)[0]
     has_balance = ok(Ec)
     fig, axes = plt.subplots(1, 2 if has_balance else 1, figsize=(11 if has_balance else 6.2, 4.3),
                              layout="constrained", squeeze=False)
@@ -461,7 +474,7 @@ def fig_density_profile(run):
     i_fit = None
     if t_fit is not None:
         i_fit = int(np.argmin(np.abs(t - t_fit)))
-        if abs(t[i_fit] - t_fit) > 1e-6 * max(1, t_fit):
+        if not same_time(t[i_fit], t_fit):
             i_fit = None
         elif i_fit not in idx:
             idx = sorted(set(idx[-2:] + [i_fit]))
@@ -541,10 +554,10 @@ def fig_haff(run):
     if t is None or Tm is None or haff is None or not (t.size == Tm.size == haff.size):
         raise Skip("no T_mean / haff_T time series")
     Tmin = arr(ts, "T_min")
-    t0 = num(run.hydro_theory["attrs"].get("t0")) if run.hydro_theory else None
+    t0, t0_origin = hydro_t0(run)
     if t0 and t0 > 0:
         X = 1 + t / t0
-        xlabel = r"$1 + t/t_0$" + rf"   ($t_0 = K/4q = {tex_num(t0)}$)"
+        xlabel = r"$1 + t/t_0$" + rf"   ($t_0 = {tex_num(t0)}$ of the {t0_origin})"
         keep = np.ones_like(t, dtype=bool)
     else:
         X, xlabel, keep = t, T_UNIT, t > 0
@@ -583,8 +596,8 @@ def fig_haff(run):
 @figure(file="fig6_linear_theory.png", section="hydro", anchor="linear",
         title='Linear theory: clustering and shear modes',
         caption=('Linearising around the homogeneous cooling state gives a clustering mode and a '
-                 'shear mode. Mode k (k<sub>x</sub> = 2πk) is clustering-unstable if πkK &lt; √q; for '
-                 'K = 4·10<sup>−4</sup>, q = 10<sup>−2</sup> this gives 79 unstable modes. Growth is '
+                 'shear mode. Mode k (k<sub>x</sub> = 2πk) is clustering-unstable if πkK &lt; √q (the '
+                 'dilute closure; another closure has its own cut-off).{unstable_modes} Growth is '
                  'algebraic in t, i.e. exponential in the collision clock used on the vertical axis.'))
 def fig_linear_theory(run):
     """Growth rates of the clustering and shear modes of the HCS vs mode number, with thresholds."""
@@ -663,7 +676,8 @@ def fig_linear_theory(run):
             ("… relative error", pct(num(lm.get("relative_error"))), None),
         ]
     return Drawn(fig, measured,
-                 note=Markup(escape(lm_note)) if lm_note else None)
+                 note=Markup(escape(lm_note)) if lm_note else None,
+                 caption_values=dict(unstable_modes=unstable_modes_sentence(run)))
 
 
 @figure(file="fig7_convergence.png", section="hydro", anchor="convergence",

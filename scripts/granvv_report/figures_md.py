@@ -9,8 +9,8 @@ import matplotlib.ticker
 import numpy as np
 from markupsafe import Markup, escape
 
-from .data import (Skip, arr, compare_hydro_T, get, md_config, md_members,
-                   md_series, md_timeseries, md_value, nanmean_rows, num)
+from .data import (HYDRODYNAMIC_FIELDS, Skip, arr, compare_hydro_T, get, haff_temperature, hydro_t0,
+                   md_config, md_members, md_series, md_timeseries, md_value, nanmean_rows, num)
 from .formatting import fmt, pct, tex_num, verdict
 from .registry import Drawn, figure
 from .style import (MD_E_UNIT, MD_MAX_MEMBERS, MD_N_UNIT, MD_T_UNIT, MD_V_UNIT, MD_X_UNIT, band,
@@ -46,7 +46,7 @@ def fig_md_haff(run):
     t0c, t0d, t0p = (md_value(run, k) for k in ("haff_t0_theory", "haff_t0_theory_dilute", "haff_t0_paper"))
     T0 = T0m if T0m is not None else float(Tm[0])
     if chi is None and t0c:
-        chi = T0 * (1 + t / t0c) ** -2.0
+        chi = haff_temperature(t, t0c, T0)
     if t0c and t0c > 0:
         X = 1 + t / t0c
         keep = np.ones(S, dtype=bool)
@@ -71,8 +71,8 @@ def fig_md_haff(run):
     # curves it allows
     tol = md_value(run, "haff_t0_tolerance")
     if t0c and t0c > 0 and tol is not None:
-        lo_c = T0 * (1 + t / (t0c * (1 - tol))) ** -2.0
-        hi_c = T0 * (1 + t / (t0c * (1 + tol))) ** -2.0
+        lo_c = haff_temperature(t, t0c * (1 - tol), T0)
+        hi_c = haff_temperature(t, t0c * (1 + tol), T0)
         ax.fill_between(Xk, lo_c[keep], hi_c[keep], color="C2", alpha=0.16, lw=0,
                         label=rf"acceptance: $t_0$ within $\pm{100 * tol:.0f}$ % of $t_0^{{\chi}}$")
     if Tmem is not None and Tmem.shape[0] > 1:
@@ -93,7 +93,8 @@ def fig_md_haff(run):
     # the hydro of a side-by-side run (same K, q): its mass-weighted <T>, in MD time
     hyd = compare_hydro_T(run)
     hyd_note = None
-    t0_hyd = num(run.compare_summary("haff", "t0_hydro"))   # K/4q of the hydro, in MD time
+    t0_hyd = num(run.compare_summary("haff", "t0_hydro"))   # the hydro's t0, in MD time
+    t0_hyd_origin = hydro_t0(run)[1]
     if hyd is not None:
         th, Th = hyd
         sel = th <= t[-1] * (1 + 1e-9)
@@ -103,7 +104,7 @@ def fig_md_haff(run):
         if ok.sum() >= 2:
             ax.plot(Xh[ok], Th[ok], color="C5", lw=1.6, ls=(0, (6, 2)), zorder=5,
                     label=r"hydro $\langle T\rangle$ (same $K$, $q$)"
-                    + (rf": $t_0 = K/4q = {tex_num(t0_hyd, 4)}$" if t0_hyd else ""))
+                    + (rf", {t0_hyd_origin}: $t_0 = {tex_num(t0_hyd, 4)}$" if t0_hyd else ""))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_ylabel(r"$T$  [$T_0$]")
@@ -119,7 +120,7 @@ def fig_md_haff(run):
         Tlast = float(Th[ok][-1])
         if Tlast < ylo / 1.04 or Tlast > yhi * 1.03 or np.nanmin(Th[ok]) < ylo / 1.04:
             hyd_note = (f"the hydro's ⟨T⟩ leaves the panel: {Tlast:.3g} T0 at t = {th[ok][-1]:.4g} "
-                        "(its t0 = K/4q is not the particles' kinetic-theory t0)")
+                        f"(the t0 of its {t0_hyd_origin} is not the particles' kinetic-theory t0)")
             ax.text(0.98, 0.97, "hydro leaves the panel:\n" + rf"$\langle T\rangle = {tex_num(Tlast)}$ at "
                     rf"$t = {th[ok][-1]:.4g}$", transform=ax.transAxes, ha="right", va="top", fontsize=8,
                     color="C5", bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="C5", alpha=0.9))
@@ -134,12 +135,12 @@ def fig_md_haff(run):
         band(ax2, Xk, d[keep], e[keep] if e is not None else None, c, alpha=0.13)
         ax2.plot(Xk, d[keep], color=c, lw=1.2, marker="o", ms=2.5, ls="-" if c == "k" else "--", label=lab)
     if hyd is not None and chi is not None and t0c and t0c > 0 and ok.sum() >= 2:
-        ref_h = T0 * (1 + th[ok] / t0c) ** -2.0
+        ref_h = haff_temperature(th[ok], t0c, T0)
         dh = 100 * (Th[ok] / ref_h - 1)
         if np.nanmax(np.abs(dh)) <= 30:   # a hydro far off (wrong t0) would flatten the particles' curves
             ax2.plot(Xh[ok], dh, color="C5", lw=1.4, ls=(0, (6, 2)), label=r"hydro $\langle T\rangle/T_{\rm Haff}^{\chi} - 1$")
     if t0c and t0c > 0 and tol is not None:
-        dev_band = [100 * (((1 + t / t0c) / (1 + t / (t0c * (1 + s * tol)))) ** 2 - 1)
+        dev_band = [100 * (haff_temperature(t, t0c * (1 + s * tol)) / haff_temperature(t, t0c) - 1)
                     for s in (-1, 1)]
         ax2.fill_between(Xk, dev_band[0][keep], dev_band[1][keep], color="C2", alpha=0.16, lw=0, zorder=0,
                          label=rf"$t_0 = t_0^{{\chi}}(1 \pm {tol:g})$")
@@ -186,7 +187,7 @@ def fig_md_haff(run):
         ("ensemble members (seeds)", fmt(M), None),
     ]
     if hyd is not None:
-        measured.append(("hydro of the comparison: t<sub>0</sub> = K/(4q) in MD time (the K, q the hydro ran with)",
+        measured.append((f"hydro of the comparison: t<sub>0</sub> of its {escape(t0_hyd_origin)} in MD time (the K, q the hydro ran with)",
                          Markup(f"{fmt(t0_hyd)}{unit}") if t0_hyd else fmt(None), None))
         measured.append(("… deviation t<sub>0</sub><sup>hydro</sup>/t<sub>0</sub> − 1 from the fitted t<sub>0</sub>",
                          pct(num(run.compare_summary("haff", "deviation_hydro"))), None))
@@ -325,7 +326,7 @@ def fig_md_fields(run):
         raise Skip("no snapshots in /md/fields (md.output_times is empty)")
     ns, nb = t.size, x.size
     Q = {}
-    for k in ("n", "v_x", "v_y", "T"):
+    for k in HYDRODYNAMIC_FIELDS:
         a = arr(F, k)
         if a is not None and a.shape == (ns, nb):
             e = arr(F, k + "_stderr")
@@ -358,7 +359,7 @@ def fig_md_fields(run):
                     label=(f"$t = {t[i]:.4g}$" if key == "n" else None))
             entries += key == "n"
             if key == "T" and t0c and t0c > 0 and T0m:
-                ax.axhline(T0m * (1 + t[i] / t0c) ** -2.0, color=c, lw=0.9, ls="--")
+                ax.axhline(haff_temperature(t[i], t0c, T0m), color=c, lw=0.9, ls="--")
         if key in ("n", "T"):
             pos = a[idx][np.isfinite(a[idx]) & (a[idx] > 0)]
             if pos.size and pos.max() / pos.min() > 5:     # clusters: a log axis, as for the hydro

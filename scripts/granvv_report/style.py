@@ -38,10 +38,12 @@ MD_MAX_MEMBERS = 40          # ensemble members drawn individually (thin lines)
 
 # Hydro and particles side by side (/compare), in the hydro's scaled units: x in Lx on [-1/2, 1/2),
 # t in Lx/sqrt(T0/m) (MD time = t * Lx/sigma), n in n0, v in sqrt(T0/m), T in T0.
-CMP_FIELDS = [("n", "density", r"$n$  [$n_0$]", "C0"),
-              ("v_x", "velocity $v_x$", r"$v_x$  [$\sqrt{T_0/m}$]", "C3"),
-              ("v_y", "transverse velocity $v_y$", r"$v_y$  [$\sqrt{T_0/m}$]", "C2"),
-              ("T", "temperature", r"$T$  [$T_0$]", "C1")]
+# How each compared field is drawn: title, axis label, colour; and its name in a label. Which fields a
+# comparison holds, and their order, come from data.compared_fields.
+CMP_FIELD_STYLE = {"n": ("density", r"$n$  [$n_0$]", "C0"),
+                   "v_x": ("velocity $v_x$", r"$v_x$  [$\sqrt{T_0/m}$]", "C3"),
+                   "v_y": ("transverse velocity $v_y$", r"$v_y$  [$\sqrt{T_0/m}$]", "C2"),
+                   "T": ("temperature", r"$T$  [$T_0$]", "C1")}
 CMP_FIELD_TEX = {"n": "$n$", "v_x": "$v_x$", "v_y": "$v_y$", "T": "$T$"}
 CMP_HYDRO, CMP_MD, CMP_INERTIA = "C0", "C3", "0.15"
 CMP_MAX_TIMES = 6            # columns of the profile figure

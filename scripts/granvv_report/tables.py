@@ -4,9 +4,8 @@ import math
 
 from markupsafe import Markup, escape
 
-from .data import arr, cmp_box, cmp_vec, cmp_window, get, md_value, num, sweep_points
+from .data import arr, cmp_box, cmp_vec, cmp_window, compared_fields, get, hydro_t0, md_value, num, sweep_points
 from .formatting import CMP_FIELD_HTML, fmt, pct
-from .style import CMP_FIELDS
 
 
 def status_badge(status):
@@ -79,10 +78,8 @@ def compare_section(run):
     # metrics per field and time
     metrics = []
     if C and t is not None:
-        for key, *_ in CMP_FIELDS:
-            g = C["fields"].get(key)
-            if g is None:
-                continue
+        for key in compared_fields(C):
+            g = C["fields"][key]
             cols = {k: cmp_vec(g, k, t.size) for k in ("l1", "l2", "linf", "fraction_within", "worst_z")}
             agrees = run.compare_summary("fields", key, "agrees") or []   # the program's verdict per time
             trs = []
@@ -93,7 +90,8 @@ def compare_section(run):
                                for k in ("l1", "l2", "linf", "fraction_within", "worst_z")]})
             metrics.append({"field": Markup(CMP_FIELD_HTML.get(key, key)), "source": fmt(g["attrs"].get("error_source")),
                             "rows": trs})
-    # Haff: the particles' measured t0 against kinetic theory and the hydro's K/4q
+    # Haff: the particles' measured t0 against kinetic theory and the hydro's (its closure's)
+    t0h_origin = escape(hydro_t0(run)[1])
     h = c.get("haff") if isinstance(c.get("haff"), dict) else {}
     t0m = num(h.get("t0_measured")) if h else None
     t0m = t0m if t0m is not None else md_value(run, "haff_t0_measured")
@@ -118,7 +116,7 @@ def compare_section(run):
     haff = [("measured (fit of the MD's T(t))", Markup(f"{fmt(t0m)} ± {fmt(t0e, 2)}{unit}") if t0m is not None else fmt(None),
              fmt(None), fmt(None))]
     for (lab, ref), (d, sg) in zip((("kinetic theory, Enskog χ(φ)", t0c), ("kinetic theory, dilute (χ = 1)", t0d),
-                                    ("the hydro's K/4q (in MD time)", t0h)), devs):
+                                    (Markup(f"t<sub>0</sub> of the hydro's {t0h_origin} (in MD time)"), t0h)), devs):
         haff.append((lab, Markup(f"{fmt(ref)}{unit}") if ref is not None else fmt(None), pct(num(d)), fmt(num(sg), 3)))
     cost = get(c, "cost") or {}
     ch, cm = cost.get("hydro") or {}, cost.get("md") or {}
@@ -134,7 +132,8 @@ def compare_section(run):
     notes = []
     if h.get("hydro_cools_differently"):
         notes.append(Markup(
-            f"The hydro's Haff time K/4q = {fmt(t0h)} σ(m/T<sub>0</sub>)<sup>1/2</sup> (the K, q the hydro ran with, in MD time) "
+            f"The hydro's Haff time t<sub>0</sub> = {fmt(t0h)} σ(m/T<sub>0</sub>)<sup>1/2</sup> (of its {t0h_origin}, with the "
+            "K, q the hydro ran with, in MD time) "
             f"differs from the particles' measured t<sub>0</sub> = {fmt(t0m)} by {pct(num(h.get('deviation_hydro')))}: the hydro does "
             "not cool like this particle box (its K, q do not describe the box, e.g. when md.particles or the box "
             "is set directly). Differences in T then come from the cooling rate, whatever the signal-to-noise "
