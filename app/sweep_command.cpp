@@ -200,6 +200,50 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
           {"sigmas", sigmas}};
 }
 
+// One point of the sweep: its run (or the finished run already in its folder, or its
+// checkpoints continued), and its row of sweep.json; status is the run's exit code.
+json sweep_point(const SweepOptions& options, const fs::path& dir, const SweptKey& swept,
+                 const std::vector<std::string>& fixed, std::size_t index, double numeric_value,
+                 const std::string& resolved, int& status) {
+  const std::string& value = swept.values[index];
+  RunOptions run;
+  run.case_name = options.case_name;
+  run.out_dir = (dir / folder_name(swept.key, value)).string();
+  run.sets = fixed;
+  run.sets.push_back(swept.key + "=" + value);
+  run.quiet = options.quiet;
+  run.report = options.report;
+  const bool reused = point_is_complete(run.out_dir, resolved);
+  // A point stopped midway continues from its checkpoints if they are of this very case.
+  const std::optional<std::string> checkpointed = checkpointed_case(run.out_dir);
+  run.resume = !reused && checkpointed &&
+               checkpointed_case_difference(*checkpointed,
+                                            CaseConfig::from_string(resolved, run.out_dir, {}))
+                   .empty();
+  std::cerr << "sweep: point " << index + 1 << "/" << swept.values.size() << ": " << swept.key
+            << " = " << value
+            << (reused       ? ": already complete in "
+                : run.resume ? ": continues its checkpoint in "
+                             : " -> ")
+            << run.out_dir << "\n";
+  status = reused ? 0 : run_command(run);
+  json point = {{"value", numeric_value},
+                {"dir", fs::path(run.out_dir).filename().string()},
+                {"exit_code", status},
+                {"reused", reused}};
+  // An interrupted run leaves the point's previous outputs in place: they are not its result.
+  const bool stopped = !reused && interruption_signal() && status == interrupted_exit_code();
+  const json summary =
+      stopped ? json(nullptr) : read_json_or_null(fs::path(run.out_dir) / "summary.json");
+  point["status"] = stopped ? json("interrupted") : value_or_null(summary, "status");
+  point["md"] = value_or_null(summary, "md");
+  point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
+                                    ? summary["hydro"]["wall_seconds"]
+                                    : json(nullptr);
+  point["compare"] = value_or_null(summary, "compare");
+  return point;
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& options) {
@@ -263,42 +307,10 @@ int sweep_command(const SweepOptions& options) {
   try {
     write_sweep_json(dir, sweep);
     for (std::size_t i = 0; i < swept.values.size() && !interruption_signal(); ++i) {
+      int status = 0;
+      const json point =
+          sweep_point(options, dir, swept, fixed, i, numeric_values[i], resolved[i], status);
       const std::string& value = swept.values[i];
-      RunOptions run;
-      run.case_name = options.case_name;
-      run.out_dir = (dir / folder_name(swept.key, value)).string();
-      run.sets = fixed;
-      run.sets.push_back(swept.key + "=" + value);
-      run.quiet = options.quiet;
-      run.report = options.report;
-      const bool reused = point_is_complete(run.out_dir, resolved[i]);
-      // A point stopped midway continues from its checkpoints if they are of this very case.
-      const std::optional<std::string> checkpointed = checkpointed_case(run.out_dir);
-      run.resume = !reused && checkpointed &&
-                   checkpointed_case_difference(
-                       *checkpointed, CaseConfig::from_string(resolved[i], run.out_dir, {}))
-                       .empty();
-      std::cerr << "sweep: point " << i + 1 << "/" << swept.values.size() << ": " << swept.key
-                << " = " << value
-                << (reused       ? ": already complete in "
-                    : run.resume ? ": continues its checkpoint in "
-                                 : " -> ")
-                << run.out_dir << "\n";
-      const int status = reused ? 0 : run_command(run);
-      json point = {{"value", numeric_values[i]},
-                    {"dir", fs::path(run.out_dir).filename().string()},
-                    {"exit_code", status},
-                    {"reused", reused}};
-      // An interrupted run leaves the point's previous outputs in place: they are not its result.
-      const bool stopped = !reused && interruption_signal() && status == interrupted_exit_code();
-      const json summary =
-          stopped ? json(nullptr) : read_json_or_null(fs::path(run.out_dir) / "summary.json");
-      point["status"] = stopped ? json("interrupted") : value_or_null(summary, "status");
-      point["md"] = value_or_null(summary, "md");
-      point["hydro_wall_seconds"] = summary.is_object() && summary["hydro"].is_object()
-                                        ? summary["hydro"]["wall_seconds"]
-                                        : json(nullptr);
-      point["compare"] = value_or_null(summary, "compare");
       if (status != 0) exit_code = 1;
       sweep["points"].push_back(point);
       const json& md = point["md"];
