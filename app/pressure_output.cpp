@@ -2,8 +2,6 @@
 
 #include <H5Cpp.h>
 
-#include <cmath>
-#include <limits>
 #include <vector>
 
 #include "compare/ensemble_statistics.hpp"

@@ -40,8 +40,8 @@ struct CollisionRuleCheck {
 };
 
 // A run is refused when its engine's collision rule has a restitution further than this from the
-// scene's: Haff's time scales as 1/(1 - r^2), so at r = 0.9 an error of 1e-3 in r is 0.5 % of
-// t0, well inside the 3 % the cooling is judged by (compare/haff_fit.hpp).
+// scene's: Haff's time scales as 1/(1 - r^2), so at r = 0.9 an error of 1e-3 in r moves t0 by
+// about 1 %, inside the 3 % the cooling is judged by (compare/haff_fit.hpp).
 inline constexpr double kRestitutionTolerance = 1e-3;
 
 // Whether the checked restitution misses the target by more than kRestitutionTolerance (a NaN
