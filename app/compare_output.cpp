@@ -91,16 +91,6 @@ json modes_summary(const CompareOutcome& out) {
           {"growth_theory", growth(out.theory_modes)}};
 }
 
-// Whether the hydro's Haff time misses the particles' measured one by more than 10 % and by more
-// than 3 fit errors: then the hydro's K, q do not describe the particle box (docs/physics.md §4),
-// and differences in T come from the cooling rate whatever the signal-to-noise classification says.
-json hydro_cools_differently(double t0_hydro, const compare::HaffFit& haff) {
-  if (!std::isfinite(haff.t0) || !std::isfinite(haff.t0_error) || !(haff.t0_error > 0))
-    return nullptr;
-  return std::abs(t0_hydro / haff.t0 - 1.0) > 0.1 &&
-         std::abs(t0_hydro - haff.t0) > 3.0 * haff.t0_error;
-}
-
 }  // namespace
 
 json compare_summary(const CompareScene& scene, const HydroScene& hydro,
@@ -164,7 +154,9 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
          number_or_null((haff.t0 - md_out.haff_t0_theory_dilute) / haff.t0_error)},
         {"measured_deviation_from_hydro", number_or_null(haff.t0 / t0_hydro - 1.0)},
         {"deviation_hydro_sigmas", number_or_null((haff.t0 - t0_hydro) / haff.t0_error)},
-        {"hydro_cools_differently", hydro_cools_differently(t0_hydro, haff)}}},
+        {"hydro_cools_differently", bool_or_null(compare::cools_differently(t0_hydro, haff))},
+        {"cools_differently_relative", compare::kCoolsDifferentlyRelative},
+        {"cools_differently_sigmas", compare::kCoolsDifferentlySigmas}}},
       {"cost",
        {{"hydro",
          {{"wall_seconds", run.wall_seconds},

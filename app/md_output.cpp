@@ -4,11 +4,12 @@
 #include <cmath>
 #include <variant>
 
+#include "compare/haff_fit.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
-#include "hydro/enskog_factors.hpp"
 #include "hydro/haff.hpp"
 #include "scene/json_numbers.hpp"
+#include "md_bridge/hard_disk_theory.hpp"
 
 namespace granvv::app {
 namespace {
@@ -17,10 +18,6 @@ using h5::write_attribute;
 using h5::write_matrix;
 using h5::write_vector;
 using nlohmann::json;
-
-// Acceptance of a particle run's cooling: the fitted Haff time lies within 3 % of kinetic theory
-// with the Enskog chi(phi) (docs/physics.md §4).
-constexpr double kHaffT0Tolerance = 0.03;
 
 // The engine's own results at their dotted keys ("contact_initial.kn" -> {"contact_initial":
 // {"kn": ...}}).
@@ -63,6 +60,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"restitution", sc.restitution},
       {"restitution_measured", out.collision_rule.restitution},
       {"restitution_check", out.collision_rule.description},
+      {"restitution_tolerance", md::kRestitutionTolerance},
       {"K", physics.K},
       {"q", physics.q},
       {"unstable_modes", sc.unstable_modes()},
@@ -81,9 +79,8 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
       {"haff_t0_deviation_sigmas",
        number_or_null((out.haff.t0 - out.haff_t0_theory) / out.haff.t0_error)},
-      {"haff_t0_tolerance", kHaffT0Tolerance},
-      {"haff_t0_within_tolerance",
-       std::isfinite(deviation) ? json(std::abs(deviation) <= kHaffT0Tolerance) : json()},
+      {"haff_t0_tolerance", compare::kHaffTimeTolerance},
+      {"haff_t0_within_tolerance", bool_or_null(compare::haff_time_within_tolerance(deviation))},
       {"haff_t0_paper", t0_paper},
       {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
       {"haff_mode_energy_fraction", scene.haff_mode_energy_fraction},
@@ -94,7 +91,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"pressure_error", number_or_null(out.pressure.error)},
       {"compressibility", number_or_null(out.compressibility.mean)},
       {"compressibility_error", number_or_null(out.compressibility.error)},
-      {"compressibility_enskog", hydro::enskog::pressure_factor(sc.area_fraction, sc.restitution)},
+      {"compressibility_enskog", md::enskog_compressibility(sc)},
       {"snapshot_times", snaps},
       {"noise_velocity_initial", sn.noise},
       {"signal_velocity_initial", sn.signal},
@@ -165,15 +162,10 @@ void write_md_results(const std::filesystem::path& file, const MdScene& scene,
     }
     write_matrix(ts, base.engine[i].first, all, members);
   }
-  std::vector<double> fit, chi, dilute;
-  for (double t : base.t) {
-    fit.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff.t0, 2));
-    chi.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff_t0_theory, 2));
-    dilute.push_back(out.haff.T0 / std::pow(1.0 + t / out.haff_t0_theory_dilute, 2));
-  }
-  write_vector(ts, "haff_fit", fit);
-  write_vector(ts, "haff_theory", chi);
-  write_vector(ts, "haff_theory_dilute", dilute);
+  write_vector(ts, "haff_fit", compare::haff_curve(base.t, out.haff.T0, out.haff.t0));
+  write_vector(ts, "haff_theory", compare::haff_curve(base.t, out.haff.T0, out.haff_t0_theory));
+  write_vector(ts, "haff_theory_dilute",
+               compare::haff_curve(base.t, out.haff.T0, out.haff_t0_theory_dilute));
 
   H5::Group fields = h5.createGroup("/md/fields");
   fields::write_field_series(fields, out.fields);

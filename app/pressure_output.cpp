@@ -2,33 +2,15 @@
 
 #include <H5Cpp.h>
 
-#include <cmath>
-#include <limits>
 #include <vector>
 
 #include "compare/ensemble_statistics.hpp"
+#include "compare/pressure_comparison.hpp"
+#include "compare/profile_measures.hpp"
 #include "fields/hdf5_datasets.hpp"
 
 namespace granvv::app {
 namespace {
-
-// The closure's pressure in MD units at MD densities and temperatures (scaled n = n_md / n0,
-// T unchanged, p_md = p n0 with T0 = 1); NaN where n or T is not finite.
-std::vector<double> closure_pressure(const hydro::Closure& closure, const std::vector<double>& n,
-                                     const std::vector<double>& T, double n0) {
-  std::vector<double> out(n.size(), std::numeric_limits<double>::quiet_NaN());
-  std::vector<double> ns, Ts;
-  std::vector<std::size_t> at;
-  for (std::size_t i = 0; i < n.size(); ++i) {
-    if (std::isfinite(n[i]) && std::isfinite(T[i]) && n[i] > 0 && T[i] > 0) {
-      ns.push_back(n[i] / n0), Ts.push_back(T[i]), at.push_back(i);
-    }
-  }
-  hydro::CellCoefficients c;
-  closure.cell_coefficients(ns, Ts, c);
-  for (std::size_t k = 0; k < at.size(); ++k) out[at[k]] = c.pressure[k] * n0;
-  return out;
-}
 
 // One closure's p(n, T) at the particles' bins (`eos`, [ns x B]) and for the box at n0 and the
 // ensemble's T (`box_eos`, [S]).
@@ -39,11 +21,11 @@ struct ClosurePressure {
 ClosurePressure closure_pressures(const hydro::Closure& closure, const MdOutcome& out, double n0) {
   ClosurePressure p;
   for (const auto& s : out.fields.snapshots) {
-    const auto bins = closure_pressure(closure, s.n, s.T, n0);
+    const auto bins = compare::closure_pressure_md(closure, s.n, s.T, n0);
     p.eos.insert(p.eos.end(), bins.begin(), bins.end());
   }
   const std::vector<double> n_box(out.T.mean.size(), n0);
-  p.box_eos = closure_pressure(closure, n_box, out.T.mean, n0);
+  p.box_eos = compare::closure_pressure_md(closure, n_box, out.T.mean, n0);
   return p;
 }
 
@@ -63,14 +45,11 @@ void write_pressure_comparison(const std::filesystem::path& file, const HydroSce
   std::vector<double> t, x = snaps.front().x, md_p, md_error, peak_bin;
   for (const auto& s : snaps) {
     t.push_back(s.t);
-    for (std::size_t b = 0; b < s.P_xx.size(); ++b) {
-      md_p.push_back(0.5 * (s.P_xx[b] + s.P_yy[b]));
-      md_error.push_back(0.5 * std::hypot(s.P_xx_stderr[b], s.P_yy_stderr[b]));
-    }
-    std::size_t peak = 0;
-    for (std::size_t b = 1; b < s.n.size(); ++b)
-      if (s.n[b] > s.n[peak]) peak = b;
-    peak_bin.push_back(static_cast<double>(peak));
+    const std::vector<double> p = compare::normal_pressure(s.P_xx, s.P_yy);
+    const std::vector<double> e = compare::normal_pressure_error(s.P_xx_stderr, s.P_yy_stderr);
+    md_p.insert(md_p.end(), p.begin(), p.end());
+    md_error.insert(md_error.end(), e.begin(), e.end());
+    peak_bin.push_back(static_cast<double>(compare::peak_bin(s.n)));
   }
   const ClosurePressure first = closure_pressures(*closure, out, n0);
   h5::write_vector(g, "t", t);
@@ -93,10 +72,7 @@ void write_pressure_comparison(const std::filesystem::path& file, const HydroSce
 
   std::vector<std::vector<double>> box;
   for (const auto& run : out.runs) {
-    std::vector<double> p;
-    for (std::size_t i = 0; i < run.series.pressure_xx.size(); ++i)
-      p.push_back(0.5 * (run.series.pressure_xx[i] + run.series.pressure_yy[i]));
-    box.push_back(std::move(p));
+    box.push_back(compare::normal_pressure(run.series.pressure_xx, run.series.pressure_yy));
   }
   const compare::EnsembleStatistics mean = compare::ensemble_statistics(box);
   h5::write_vector(g, "box_t", out.runs.front().series.t);

@@ -164,24 +164,22 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
   const auto s = compare::analyse_cooling_sweep(cooling, power_r_min, sigmas);
   json rows = json::array();
   for (std::size_t i = 0; i < cooling.size(); ++i) {
-    rows.push_back(
-        {{"point", index[i]},
-         {"restitution", cooling[i].restitution},
-         {"t0", cooling[i].t0},
-         {"t0_error", cooling[i].t0_error},
-         {"zeta", s.zeta[i]},
-         {"zeta_error", s.zeta_error[i]},
-         {"zeta_enskog", s.zeta_enskog[i]},
-         {"zeta_dilute", s.zeta_dilute[i]},
-         {"zeta_paper", s.zeta_paper[i]},
-         {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
-         {"deviation_enskog", cooling[i].t0 / cooling[i].t0_enskog - 1.0},
-         {"deviation_enskog_sigmas", (cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error},
-         {"enskog_beyond_sigmas",
-          std::abs(cooling[i].t0 - cooling[i].t0_enskog) / cooling[i].t0_error > sigmas},
-         {"paper_deviation", s.paper_deviation[i]},
-         {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]},
-         {"paper_beyond_sigmas", std::abs(s.paper_deviation_sigmas[i]) > sigmas}});
+    rows.push_back({{"point", index[i]},
+                    {"restitution", cooling[i].restitution},
+                    {"t0", cooling[i].t0},
+                    {"t0_error", cooling[i].t0_error},
+                    {"zeta", s.zeta[i]},
+                    {"zeta_error", s.zeta_error[i]},
+                    {"zeta_enskog", s.zeta_enskog[i]},
+                    {"zeta_dilute", s.zeta_dilute[i]},
+                    {"zeta_paper", s.zeta_paper[i]},
+                    {"zeta_paper_enskog", s.zeta_paper_enskog[i]},
+                    {"deviation_enskog", s.enskog_deviation[i]},
+                    {"deviation_enskog_sigmas", s.enskog_deviation_sigmas[i]},
+                    {"enskog_beyond_sigmas", bool(s.enskog_beyond_sigmas[i])},
+                    {"paper_deviation", s.paper_deviation[i]},
+                    {"paper_deviation_sigmas", s.paper_deviation_sigmas[i]},
+                    {"paper_beyond_sigmas", bool(s.paper_beyond_sigmas[i])}});
   }
   json power = nullptr;
   if (s.power) {
@@ -190,9 +188,8 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
         {"prefactor", s.power->prefactor}, {"chi2_per_dof", number_or_null(s.power->chi2_per_dof)},
         {"points", s.power->points},       {"r_min", power_r_min}};
     // Kinetic theory: zeta ~ (1 - r^2)^1 (docs/physics.md §4).
-    const double z = (s.power->power - 1.0) / s.power->power_error;
-    power["deviation_from_one_sigmas"] = number_or_null(z);
-    power["consistent_with_one"] = std::isfinite(z) ? json(std::abs(z) <= sigmas) : json();
+    power["deviation_from_one_sigmas"] = number_or_null(s.power_deviation_from_one_sigmas);
+    power["consistent_with_one"] = bool_or_null(s.power_consistent_with_one);
   }
   return {{"points", rows},
           {"power_of_one_minus_r2", power},
@@ -343,7 +340,8 @@ int sweep_command(const SweepOptions& options) {
     return 1;
   }
   try {
-    sweep["cooling"] = cooling_analysis(sweep["points"], options.power_r_min, 3.0);
+    sweep["cooling"] =
+        cooling_analysis(sweep["points"], options.power_r_min, compare::kCoolingSweepSigmas);
   } catch (const std::exception& e) {
     sweep["cooling_error"] = e.what();
   }

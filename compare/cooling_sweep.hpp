@@ -19,15 +19,29 @@ struct CoolingPoint {
   double t0_paper = 0.0;                    // the paper's hydro, K / 4q, in the same units
 };
 
+// The standard errors beyond which a sweep's measured cooling is said to depart from a theory
+// (the Enskog rate, the paper's small-q rate, kinetic theory's power 1 of 1 - r^2).
+inline constexpr double kCoolingSweepSigmas = 3.0;
+
 struct CoolingSweep {
+  double sigmas = 0.0;  // as given
+  // Per point: the measured t0 against kinetic theory with chi(phi): t0 / t0_enskog - 1, the
+  // same difference in standard errors of t0, and whether that exceeds `sigmas`.
+  std::vector<double> enskog_deviation, enskog_deviation_sigmas;
+  std::vector<bool> enskog_beyond_sigmas;
   // Per point: cooling rates zeta = 2 / t0 (error 2 dt0 / t0^2).
   std::vector<double> zeta, zeta_error, zeta_enskog, zeta_dilute, zeta_paper, zeta_paper_enskog;
   // The paper's small-q rate with chi(phi) against the measured one: relative deviation and
   // the same in standard errors of the measurement.
   std::vector<double> paper_deviation, paper_deviation_sigmas;
+  std::vector<bool> paper_beyond_sigmas;  // |paper_deviation_sigmas| > sigmas
   // zeta = C (1 - r^2)^p fitted over the points with r >= power_r_min (nullopt: < 2 points).
   std::optional<PowerLawFit> power;
   double power_r_min = 0.0;
+  // Kinetic theory's power 1 (docs/physics.md §4) against the fitted p: (p - 1) / dp, and
+  // whether |(p - 1) / dp| <= sigmas (nullopt without a fit, or with a non-finite deviation).
+  std::optional<double> power_deviation_from_one_sigmas;
+  std::optional<bool> power_consistent_with_one;
   // The largest r at which the small-q rate (with chi) misses the measured rate by more than
   // `sigmas` standard errors (nullopt: it never does).
   std::optional<double> paper_departs_at;

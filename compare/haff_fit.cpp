@@ -60,4 +60,24 @@ HaffFit fit_haff_ensemble(const std::vector<std::vector<double>>& t,
   return f;
 }
 
+std::vector<double> haff_curve(const std::vector<double>& t, double T0, double t0) {
+  std::vector<double> T;
+  for (double ti : t) T.push_back(T0 / std::pow(1.0 + ti / t0, 2));
+  return T;
+}
+
+std::optional<bool> haff_time_within_tolerance(double deviation) {
+  if (!std::isfinite(deviation)) return std::nullopt;
+  return std::abs(deviation) <= kHaffTimeTolerance;
+}
+
+std::optional<bool> cools_differently(double t0_model, const HaffFit& measured) {
+  if (!std::isfinite(measured.t0) || !std::isfinite(measured.t0_error) ||
+      !(measured.t0_error > 0)) {
+    return std::nullopt;
+  }
+  return std::abs(t0_model / measured.t0 - 1.0) > kCoolsDifferentlyRelative &&
+         std::abs(t0_model - measured.t0) > kCoolsDifferentlySigmas * measured.t0_error;
+}
+
 }  // namespace granvv::compare

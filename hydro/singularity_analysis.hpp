@@ -23,6 +23,10 @@ struct SingularityFit {
   double n_min = 0.0, n_max = 0.0;  // ... and in density
   int points = 0;
 };
+// Paper Fig. 4a: the fitted singularity time "agrees with [tau = 1/(2 pi |a|)] within 2 %",
+// the relative deviation from flow by inertia's tau that a run's singularity time is judged by.
+inline constexpr double kSingularityTimeTolerance = 0.02;
+
 // Fit 1/n_max(t) over the samples with n_min <= n_max(t) <= n_max (paper Fig. 4a inset).
 std::optional<SingularityFit> fit_singularity_time(const std::vector<double>& t,
                                                    const std::vector<double>& n_max, double n_min,

@@ -11,6 +11,10 @@ double henderson_compressibility(double phi) {
   return hydro::enskog::pressure_factor(phi, 1.0);
 }
 
+double enskog_compressibility(const ParticleScene& s) {
+  return hydro::enskog::pressure_factor(s.area_fraction, s.restitution);
+}
+
 double luding_compressibility(double phi) {
   const double hole = 1.0 - phi;
   const double g4 = hydro::enskog::chi(phi) - phi * phi * phi / (128.0 * hole * hole * hole * hole);

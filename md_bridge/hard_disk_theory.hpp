@@ -9,6 +9,11 @@ namespace granvv::md {
 // Henderson (Mol. Phys. 30, 971 (1975)): Z = (1 + phi^2/8) / (1 - phi)^2, i.e. 1 + 2 phi chi
 // with the chi of hydro/enskog_factors.hpp.
 double henderson_compressibility(double phi);
+// Enskog's compressibility factor of the scene's inelastic hard disks, Z = p / (n T) =
+// 1 + (1 + r) phi chi(phi) at its area fraction phi and restitution r (Garzo & Dufty 1999;
+// hydro/enskog_factors.hpp, the pressure factor F_p): what the measured P/(n T) of a homogeneous
+// box is compared with. Henderson's Z at r = 1.
+double enskog_compressibility(const ParticleScene& s);
 // Luding (Phys. Rev. E 63, 042201 (2001)), Henderson's contact value with a fourth-order
 // correction: Z = 1 + 2 phi g4, g4 = (1 - 7 phi/16)/(1 - phi)^2 - phi^3 / (128 (1 - phi)^4).
 double luding_compressibility(double phi);

@@ -7,6 +7,7 @@
 // names one.
 #include <mpi.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -52,6 +53,17 @@ struct CollisionRuleCheck {
   double restitution = 0.0;  // normal restitution the engine's collisions really have
   std::string description;   // how it was obtained, one line
 };
+
+// A run is refused when its engine's collision rule has a restitution further than this from the
+// scene's: Haff's time scales as 1/(1 - r^2), so at r = 0.9 an error of 1e-3 in r moves t0 by
+// about 1 %, inside the 3 % the cooling is judged by (compare/haff_fit.hpp).
+inline constexpr double kRestitutionTolerance = 1e-3;
+
+// Whether the checked restitution misses the target by more than kRestitutionTolerance (a NaN
+// check does not miss: nothing is known against it).
+inline bool misses_restitution(const CollisionRuleCheck& check, double target) {
+  return std::abs(check.restitution - target) > kRestitutionTolerance;
+}
 
 // One rank's particles as the engine holds them: xyz triplets (z = 0 in 2D) and per-particle
 // masses, valid until the engine next moves them.

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
 #include "compare/binned_energies.hpp"
-#include "compare/density_modes.hpp"
+#include "compare/density_mode_evolution.hpp"
 #include "compare/ensemble_error_model.hpp"
 #include "compare/ensemble_fields.hpp"
 #include "compare/ensemble_statistics.hpp"
@@ -20,7 +19,6 @@
 #include "compare/verdict.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
-#include "hydro/linear_stability.hpp"
 #include "models/model.hpp"
 
 namespace granvv::app {
@@ -44,57 +42,6 @@ void record_peak_and_energies(CompareOutcome& out, const fields::FieldSnapshot& 
   out.hydro_energy_kinetic.push_back(hydro.flow);
   out.md_energy_thermal.push_back(particles.thermal);
   out.md_energy_kinetic.push_back(particles.flow);
-}
-
-// Density modes: |n_k| of the hydro; for the particles the rms over members (the phases of
-// noise-born modes differ between seeds, so the mean field would average them away), and the
-// linear theory evolving each member's own t = 0 perturbation (nu, w, theta)_k with exp(A s)
-// (hydro/linear_stability.hpp), rms over members.
-void compare_density_modes(CompareOutcome& out, int modes, const hydro::Closure& closure,
-                           const MdOutcome& md_out,
-                           const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
-                           const fields::FieldSeries& hydro_on_bins, double n0) {
-  const int members = static_cast<int>(md_out.runs.size());
-  for (int k = 1; k <= modes; ++k) {
-    out.theory_rate.push_back(hydro::hcs_modes(closure, k)[0].rate.real());
-  }
-  std::vector<std::vector<Eigen::Vector3cd>> initial(members);
-  for (int r = 0; r < members; ++r) {
-    const auto& f = md_out.runs[r].fields.snapshots.front();
-    for (int k = 1; k <= modes; ++k) {
-      initial[r].push_back(compare::hcs_perturbation(f.n, f.v_x, f.T, k));
-    }
-  }
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const auto& hb = hydro_on_bins.snapshots[pairs[i].second];
-    std::vector<double> hydro_row, md_row, md_err, theory_row;
-    const std::size_t s_index = pairs[i].first;
-    for (int k = 1; k <= modes; ++k) {
-      hydro_row.push_back(std::abs(compare::bin_fourier_coefficient(hb.n, k)));
-      std::vector<std::vector<double>> power;  // one |n_k|^2 per member
-      double theory2 = 0.0;
-      for (int r = 0; r < members; ++r) {
-        const auto& snaps = md_out.runs[r].fields.snapshots;
-        if (s_index >= snaps.size()) continue;
-        std::vector<double> relative;
-        for (double n : snaps[s_index].n) relative.push_back(n / n0);
-        power.push_back({std::norm(compare::bin_fourier_coefficient(relative, k))});
-        const Eigen::Vector3cd evolved =
-            hydro::hcs_linear_evolution(closure, k, initial[r][k - 1], out.collision_clock[i]);
-        theory2 += std::norm(evolved[0]);
-      }
-      // rms over members; its error from the scatter of |n_k|^2 (d sqrt(p) = dp / 2 sqrt(p)).
-      const auto st = compare::ensemble_statistics(power);
-      const double rms = std::sqrt(st.mean[0]);
-      md_row.push_back(rms);
-      md_err.push_back(rms > 0 ? 0.5 * st.standard_error[0] / rms : kNaN);
-      theory_row.push_back(std::sqrt(theory2 / members));
-    }
-    out.hydro_modes.push_back(hydro_row);
-    out.md_modes.push_back(md_row);
-    out.md_modes_error.push_back(md_err);
-    out.theory_modes.push_back(theory_row);
-  }
 }
 
 // The four measures of one binned state (n relative to its mean, v scaled), in the order of
@@ -314,7 +261,14 @@ CompareOutcome compare_engines(const CompareScene& scene, const HydroScene& hydr
 
   compare_inertia_measures(out, md_out, pairs, n0);
   if (scene.density_modes > 0 && !pairs.empty()) {
-    compare_density_modes(out, scene.density_modes, *closure, md_out, pairs, *continuum.fields, n0);
+    compare::DensityModes modes =
+        compare::density_modes(scene.density_modes, *closure, member_fields, *continuum.fields,
+                               pairs, out.collision_clock, n0);
+    out.theory_rate = std::move(modes.theory_rate);
+    out.hydro_modes = std::move(modes.hydro);
+    out.md_modes = std::move(modes.md);
+    out.md_modes_error = std::move(modes.md_error);
+    out.theory_modes = std::move(modes.theory);
   }
 
   write_verdict(out, scene, judged);

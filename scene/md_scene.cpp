@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "compare/ensemble_fields.hpp"
+#include "compare/particle_ensemble.hpp"
+#include "compare/signal_to_noise.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -18,13 +20,6 @@
 namespace granvv::app {
 
 namespace {
-
-// The largest value of f on 4096 cell centres of [-1/2, 1/2).
-double sampled_maximum(const std::function<double(double)>& f) {
-  double largest = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4096; ++i) largest = std::max(largest, f(-0.5 + (i + 0.5) / 4096));
-  return largest;
-}
 
 // The key behind a scene_problem (md_bridge/particle_scene.hpp), checked in its order: the
 // particle count comes from md.particles or, when that is 0, from physics.K; r from
@@ -57,9 +52,9 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   md::ParticleWorkQuestion question;
   question.scene = sc;
   question.settings = s.engine_settings;
-  question.hottest_temperature = std::max(1.0, sampled_maximum(spec.fields.T));
+  question.hottest_temperature = std::max(1.0, compare::profile_maximum(spec.fields.T));
   question.fastest_flow =
-      std::max(0.0, sampled_maximum([&](double x) {
+      std::max(0.0, compare::profile_maximum([&](double x) {
                  return std::abs(spec.fields.v(x));  // x and t both scale with Lx: v is the same
                }));
   question.t_end = spec.t_end;
@@ -134,34 +129,17 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
 
 SignalToNoise initial_signal_to_noise(const MdScene& scene) {
   const auto& sc = scene.spec.scene;
-  const double bin = sc.box_length / scene.spec.bins;
-  SignalToNoise s;
-  s.noise = 1.0 / std::sqrt(sc.number_density() * sc.box_width * bin);
-  s.signal =
-      std::max(0.0, sampled_maximum([&](double x) { return std::abs(scene.spec.fields.v(x)); }));
-  return s;
+  return compare::velocity_signal_to_noise(scene.spec.fields.v, sc.number_density(), sc.box_width,
+                                           sc.box_length, scene.spec.bins);
 }
 
 SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene) {
   const auto& sc = scene.spec.scene;
-  const int k_max = sc.unstable_modes();
-  SignalToNoise s;
-  s.noise = k_max > 0 ? k_max * std::sqrt(k_max / double(sc.particles))
-                      : std::numeric_limits<double>::quiet_NaN();
-  const auto& dv = scene.spec.fields.dv;
-  s.signal = dv ? std::max(0.0, sampled_maximum([&](double x) { return std::abs(dv(x)); })) : 0.0;
-  return s;
+  return compare::gradient_signal_to_noise(scene.spec.fields.dv, sc.unstable_modes(), sc.particles);
 }
 
 SignalToNoise initial_mode_signal_to_noise(const MdScene& scene) {
-  const auto& sc = scene.spec.scene;
-  constexpr int kSamples = 4096;  // midpoint rule: exact for a single mode
-  double b1 = 0.0;
-  for (int i = 0; i < kSamples; ++i) {
-    const double x = -0.5 + (i + 0.5) / kSamples;
-    b1 += 2.0 * scene.spec.fields.v(x) * std::sin(2.0 * M_PI * x) / kSamples;
-  }
-  return {std::abs(b1), std::sqrt(2.0 / double(sc.particles))};
+  return compare::mode_signal_to_noise(scene.spec.fields.v, scene.spec.scene.particles);
 }
 
 std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
@@ -228,7 +206,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
                       ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
   }
   // The densest point of the initial profile must still take disks without overlap.
-  const double n_max = std::max(0.0, sampled_maximum(spec.fields.n));
+  const double n_max = std::max(0.0, compare::profile_maximum(spec.fields.n));
   if (n_max * spec.scene.area_fraction > 0.5) {
     throw ConfigError(c.origin("md.area_fraction") +
                       ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
@@ -264,11 +242,11 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   const auto& sc = scene.spec.scene;
   out.engine = engine.name();
   out.collision_rule = engine.check_collision_rule();
-  if (std::abs(out.collision_rule.restitution - sc.restitution) > 1e-3) {
+  if (md::misses_restitution(out.collision_rule, sc.restitution)) {
     std::ostringstream why;
     why << "restitution " << out.collision_rule.restitution << " ("
         << out.collision_rule.description << ") misses md.restitution = " << sc.restitution
-        << " by more than 1e-3; refusing the run";
+        << " by more than " << md::kRestitutionTolerance << "; refusing the run";
     throw std::runtime_error(why.str());
   }
   const bool saving = checkpointing && !checkpointing->out_dir.empty();
@@ -289,7 +267,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
     }
     last_save = clock::now();
   };
-  std::vector<std::vector<double>> ts, Ts, fractions, pressures, pressure_errors, zs, z_errors;
+  std::vector<compare::MemberSamples> samples;
   for (int m = 0; m < scene.ensemble; ++m) {
     const MemberCheckpoint* earlier =
         m < static_cast<int>(resume.size()) ? &resume[std::size_t(m)] : nullptr;
@@ -337,35 +315,20 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
       }
     }
     const md::MdSeries& series = out.runs.back().series;
-    ts.push_back(series.t);
-    Ts.push_back(series.T);
-    fractions.push_back(series.mode_energy_fraction);
-    std::vector<double> p, p_error, z, z_error;
-    for (std::size_t i = 0; i < series.pressure_xx.size(); ++i) {
-      p.push_back(0.5 * (series.pressure_xx[i] + series.pressure_yy[i]));
-      p_error.push_back(series.pressure_stderr[i]);
-      z.push_back(series.compressibility[i]);
-      z_error.push_back(series.pressure_stderr[i] * z.back() / p.back());
-    }
-    pressures.push_back(std::move(p));
-    pressure_errors.push_back(std::move(p_error));
-    zs.push_back(std::move(z));
-    z_errors.push_back(std::move(z_error));
+    samples.push_back({series.t, series.T, series.mode_energy_fraction, series.pressure_xx,
+                       series.pressure_yy, series.pressure_stderr, series.compressibility});
   }
-  out.pressure = compare::sample_average(pressures, pressure_errors);
-  out.compressibility = compare::sample_average(zs, z_errors);
-  out.mode_energy_fraction = compare::ensemble_statistics(fractions);
-  out.homogeneous = compare::homogeneous_window(ts.front(), out.mode_energy_fraction.mean,
-                                                scene.haff_mode_energy_fraction, scene.spec.t_end);
+  const compare::ParticleEnsemble ensemble =
+      compare::reduce_particle_ensemble(samples, scene.haff_mode_energy_fraction, scene.spec.t_end);
+  out.pressure = ensemble.pressure;
+  out.compressibility = ensemble.compressibility;
+  out.mode_energy_fraction = ensemble.mode_energy_fraction;
+  out.homogeneous = ensemble.homogeneous;
   out.linear_mode_onset = md::linear_mode_onset_md(sc, scene.haff_mode_energy_fraction);
-  try {
-    out.haff = compare::fit_haff_ensemble(ts, Ts, 0.0, out.homogeneous.t_max);
-  } catch (const std::invalid_argument&) {  // too few samples, or no cooling: no fit (null)
-    out.haff.t0 = out.haff.t0_error = out.haff.T0 = std::nan("");
-  }
+  out.haff = ensemble.haff;
   out.haff_t0_theory = md::haff_time_md(sc, md::enskog_chi(sc.area_fraction));
   out.haff_t0_theory_dilute = md::haff_time_md(sc, 1.0);
-  out.T = compare::ensemble_statistics(Ts);
+  out.T = ensemble.T;
   std::vector<fields::FieldSeries> members;
   for (const auto& run : out.runs) members.push_back(run.fields);
   out.fields = compare::ensemble_field_series(members);

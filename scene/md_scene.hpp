@@ -13,6 +13,7 @@
 #include "compare/haff_fit.hpp"
 #include "compare/haff_window.hpp"
 #include "compare/sample_average.hpp"
+#include "compare/signal_to_noise.hpp"
 #include "md_bridge/md_run.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
@@ -41,24 +42,11 @@ std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene&
 // The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
 std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir);
 
-// docs/physics.md §8: the thermal velocity noise on the coarse-graining scale l = Lx/bins,
-// (n0 Ly l)^{-1/2} sqrt(T0/m), against the imposed signal, the largest initial flow speed.
-struct SignalToNoise {
-  double signal = 0.0, noise = 0.0;
-  double ratio() const { return signal / noise; }
-};
+// The initial signal-to-noise of the scene's imposed flow in its three forms (velocity, gradient,
+// mode: compare/signal_to_noise.hpp, docs/physics.md §8).
+using SignalToNoise = compare::SignalToNoise;
 SignalToNoise initial_signal_to_noise(const MdScene& scene);
-
-// docs/physics.md §8, the gradient form: the thermal noise of the velocity gradient on the scale
-// of the shortest unstable wavelength l = Lx / k_max (k_max = the scene's unstable modes),
-// (n0 Ly l)^{-1/2} / l in scaled units, against the imposed gradient max|v0'|: how strongly the
-// imposed flow, rather than the noise, seeds the clusters. 0 signal (ratio 0) without a smooth
-// imposed velocity, and NaN noise (ratio NaN) without unstable modes.
 SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene);
-
-// docs/physics.md §8, the mode form: the sin 2 pi x amplitude b1 = 2 <v sin 2 pi x> of the
-// imposed velocity against its thermal noise in N disks at T0, sqrt(2 T0 / (m N)): how clearly
-// the imposed mode as a whole, which averages over every bin, stands out.
 SignalToNoise initial_mode_signal_to_noise(const MdScene& scene);
 
 struct MdOutcome {
@@ -102,7 +90,7 @@ struct MdCheckpointing {
 };
 
 // Throws std::runtime_error if the restitution the engine's collision rule really has misses
-// the target by more than 1e-3 (the run is refused).
+// the target by more than md::kRestitutionTolerance (the run is refused).
 // With checkpointing null (or its out_dir empty) nothing is saved.
 MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
                        const std::function<void(int member, const md::MdProgress&)>& progress,

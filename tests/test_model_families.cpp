@@ -21,7 +21,7 @@ using app::AtlasScene;
 using app::FamilyKind;
 using app::ModelFamily;
 
-// The atlas's view of a shipped scene, with --set overrides, as app/atlas_command.cpp makes it.
+// The atlas's view of a shipped scene, with --set overrides, as atlas/atlas_setup.cpp makes it.
 AtlasScene scene_of(const std::string& name, const std::vector<std::string>& sets = {}) {
   AtlasScene scene;
   scene.source = app::locate_case(name);
