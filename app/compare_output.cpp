@@ -4,6 +4,7 @@
 
 #include "app/md_output.hpp"
 #include "app/summary.hpp"
+#include "compare/haff_fit.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 #include "scene/json_numbers.hpp"
@@ -145,8 +146,10 @@ json compare_summary(const CompareScene& scene, const HydroScene& hydro,
         {"t0_theory_enskog", md_out.haff_t0_theory},
         {"t0_theory_dilute", md_out.haff_t0_theory_dilute},
         {"t0_hydro", t0_hydro},
-        {"deviation_enskog", number_or_null(haff.t0 / md_out.haff_t0_theory - 1.0)},
-        {"deviation_dilute", number_or_null(haff.t0 / md_out.haff_t0_theory_dilute - 1.0)},
+        {"deviation_enskog",
+         number_or_null(compare::relative_deviation(haff.t0, md_out.haff_t0_theory))},
+        {"deviation_dilute",
+         number_or_null(compare::relative_deviation(haff.t0, md_out.haff_t0_theory_dilute))},
         {"deviation_hydro", number_or_null(t0_hydro / haff.t0 - 1.0)},
         {"deviation_enskog_sigmas",
          number_or_null((haff.t0 - md_out.haff_t0_theory) / haff.t0_error)},

@@ -8,8 +8,8 @@
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
-#include "scene/json_numbers.hpp"
 #include "md_bridge/hard_disk_theory.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {
@@ -48,7 +48,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   for (const auto& run : out.runs) steps += run.steps;
   json snaps = json::array();
   for (const auto& s : out.runs.front().fields.snapshots) snaps.push_back(s.t);
-  const double deviation = out.haff.t0 / out.haff_t0_theory - 1.0;
+  const double deviation = compare::relative_deviation(out.haff.t0, out.haff_t0_theory);
   const double t0_paper = sc.md_time(hydro::haff_time_scale(physics));
   json block = {
       {"status", out.runs.back().status},
@@ -75,14 +75,16 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
       {"haff_fit_window", {out.haff.t_min, out.haff.t_max}},
       {"haff_t0_theory", out.haff_t0_theory},
       {"haff_t0_theory_dilute", out.haff_t0_theory_dilute},
-      {"haff_t0_deviation", number_or_null(out.haff.t0 / out.haff_t0_theory - 1.0)},
-      {"haff_t0_deviation_dilute", number_or_null(out.haff.t0 / out.haff_t0_theory_dilute - 1.0)},
+      {"haff_t0_deviation", number_or_null(deviation)},
+      {"haff_t0_deviation_dilute",
+       number_or_null(compare::relative_deviation(out.haff.t0, out.haff_t0_theory_dilute))},
       {"haff_t0_deviation_sigmas",
        number_or_null((out.haff.t0 - out.haff_t0_theory) / out.haff.t0_error)},
       {"haff_t0_tolerance", compare::kHaffTimeTolerance},
       {"haff_t0_within_tolerance", bool_or_null(compare::haff_time_within_tolerance(deviation))},
       {"haff_t0_paper", t0_paper},
-      {"haff_t0_deviation_paper", number_or_null(out.haff.t0 / t0_paper - 1.0)},
+      {"haff_t0_deviation_paper",
+       number_or_null(compare::relative_deviation(out.haff.t0, t0_paper))},
       {"haff_mode_energy_fraction", scene.haff_mode_energy_fraction},
       {"haff_starts_homogeneous", out.homogeneous.starts_homogeneous},
       {"haff_onset_measured", number_or_null(out.homogeneous.onset)},

@@ -8,8 +8,8 @@
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/linear_stability.hpp"
-#include "scene/json_numbers.hpp"
 #include "hydro/singularity_analysis.hpp"
+#include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 namespace {

@@ -1,6 +1,7 @@
 #include "compare/haff_fit.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace granvv::compare {
@@ -64,6 +65,11 @@ std::vector<double> haff_curve(const std::vector<double>& t, double T0, double t
   std::vector<double> T;
   for (double ti : t) T.push_back(T0 / std::pow(1.0 + ti / t0, 2));
   return T;
+}
+
+double relative_deviation(double measured, double theory) {
+  if (!std::isfinite(theory) || !(theory > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return measured / theory - 1.0;
 }
 
 std::optional<bool> haff_time_within_tolerance(double deviation) {

@@ -30,6 +30,10 @@ std::vector<double> haff_curve(const std::vector<double>& t, double T0, double t
 // with the Enskog chi(phi) (docs/physics.md §4). deviation = t0_measured / t0_theory - 1;
 // nullopt when it is not finite (no fit).
 inline constexpr double kHaffTimeTolerance = 0.03;
+// measured / theory - 1: how far a measured Haff time is from a theory's. NaN (absent, null in
+// summary.json) where the theory gives no Haff time: an elastic gas does not cool, its t0 is
+// infinite, and a deviation of -1 would claim a theory that does not exist.
+double relative_deviation(double measured, double theory);
 std::optional<bool> haff_time_within_tolerance(double deviation);
 
 // Whether a model's Haff time t0_model misses the measured one by more than 10 % and by more

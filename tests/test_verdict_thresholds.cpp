@@ -34,6 +34,17 @@ TEST(VerdictThresholds, HaffTimeWithinToleranceIsInclusiveAndNullWithoutAFit) {
   EXPECT_FALSE(compare::haff_time_within_tolerance(kNaN).has_value());
 }
 
+TEST(VerdictThresholds, ADeviationFromAHaffTimeNeedsAFiniteTheory) {
+  EXPECT_DOUBLE_EQ(compare::relative_deviation(1.1, 1.0), 1.1 - 1.0);
+  // An elastic gas: the theory's t0 is infinite (no cooling), so there is no deviation (not -1).
+  EXPECT_TRUE(
+      std::isnan(compare::relative_deviation(5.0, std::numeric_limits<double>::infinity())));
+  EXPECT_TRUE(std::isnan(compare::relative_deviation(5.0, 0.0)));
+  EXPECT_TRUE(std::isnan(compare::relative_deviation(5.0, std::nan(""))));
+  // A measured t0 that is absent stays absent.
+  EXPECT_TRUE(std::isnan(compare::relative_deviation(std::nan(""), 1.0)));
+}
+
 TEST(VerdictThresholds, HaffCurveIsHaffsLawWithTheFittedAmplitude) {
   // T0 (1 + t/t0)^-2 at t = 0, t0, 3 t0: T0, T0/4, T0/16, exact in binary.
   const auto T = compare::haff_curve({0.0, 2.0, 6.0}, 0.5, 2.0);
