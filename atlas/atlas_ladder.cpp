@@ -18,22 +18,30 @@ void plan(const AtlasScene& scene, const ModelFamily& family, const AtlasRun& pi
           int parallel, double budget_seconds, LadderRuns& out, std::vector<AtlasSetting>& settings,
           std::vector<double>& estimates) {
   double planned_seconds = pilot.cost.wall_seconds;
-  std::vector<AtlasSetting> grid = family.grid(scene);
-  std::stable_sort(grid.begin(), grid.end(), [&](const AtlasSetting& a, const AtlasSetting& b) {
-    const bool fa = family.plan_first(a, scene), fb = family.plan_first(b, scene);
-    if (fa != fb) return fa;
-    return family.estimate(a, pilot, scene) < family.estimate(b, pilot, scene);
-  });
-  for (const auto& s : grid) {
-    if (s == pilot.setting) continue;
+  struct Planned {
+    AtlasSetting setting;
+    bool first;
+    double estimate;
+  };
+  std::vector<Planned> grid;
+  for (auto& s : family.grid(scene)) {
+    const bool first = family.plan_first(s, scene);
     const double e = family.estimate(s, pilot, scene);
-    if ((planned_seconds + e) / parallel > share) {
-      out.skipped.push_back(skipped_for_budget(s, e, share, budget_seconds));
+    grid.push_back({std::move(s), first, e});
+  }
+  std::stable_sort(grid.begin(), grid.end(), [](const Planned& a, const Planned& b) {
+    if (a.first != b.first) return a.first;
+    return a.estimate < b.estimate;
+  });
+  for (const Planned& p : grid) {
+    if (p.setting == pilot.setting) continue;
+    if ((planned_seconds + p.estimate) / parallel > share) {
+      out.skipped.push_back(skipped_for_budget(p.setting, p.estimate, share, budget_seconds));
       continue;
     }
-    planned_seconds += e;
-    settings.push_back(s);
-    estimates.push_back(e);
+    planned_seconds += p.estimate;
+    settings.push_back(p.setting);
+    estimates.push_back(p.estimate);
   }
   out.budget.spend(planned_seconds / parallel);
   out.budget.done();

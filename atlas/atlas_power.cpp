@@ -6,15 +6,13 @@
 #include "atlas/detectable_error.hpp"
 #include "compare/side_by_side.hpp"
 #include "scene/case_schema.hpp"
+#include "scene/hydro_scene.hpp"
 #include "scene/json_numbers.hpp"
 
 namespace granvv::app {
 using nlohmann::json;
 
 namespace {
-
-// The knob every ensemble family shares (models/particle_family.hpp): its size.
-constexpr const char* kEnsemble = "ensemble";
 
 // The two directions of an injected error: the coefficient made larger and smaller.
 struct Direction {
@@ -37,8 +35,8 @@ atlas::JudgedHydro judge(const AtlasScene& scene, const AtlasRun& hydro, const A
   }
   const compare::VerdictRule rule{compare::kClearSignalToNoise, scene.sigmas};
   const compare::SideBySide s = compare::judge_side_by_side(
-      *particles.fields, *hydro.fields, compare::compared_fields(scene.transverse), scene.sigmas,
-      scene.agreement_fraction, scene.signal_to_noise, rule);
+      *particles.fields, *hydro.fields, compare::compared_fields(scene.case_hydro->transverse),
+      scene.sigmas, scene.agreement_fraction, scene.signal_to_noise, rule);
   j.finished = true;
   j.model_disagreement = s.kind == compare::Disagreement::model_clear_signal ||
                          s.kind == compare::Disagreement::model_box_offset;
@@ -146,7 +144,7 @@ json comparison_power_within_budget(const AtlasScene& scene, const std::vector<A
     if (hydro && r.setting == hydro->case_setting(scene)) unperturbed = &r;
     // The reference's runs at the case's own setting but for the ensemble size.
     const bool own_setting =
-        reference_family.with_knob(r.setting, kEnsemble, own_particles.knob(kEnsemble)) ==
+        reference_family.with_knob(r.setting, kEnsembleKnob, own_particles.knob(kEnsembleKnob)) ==
         own_particles;
     if (r.setting.model == reference_family.name() && r.status == "ok" && r.fields && own_setting) {
       particle_runs.push_back(&r);
@@ -154,13 +152,13 @@ json comparison_power_within_budget(const AtlasScene& scene, const std::vector<A
   }
   std::stable_sort(particle_runs.begin(), particle_runs.end(),
                    [](const AtlasRun* a, const AtlasRun* b) {
-                     return a->setting.knob(kEnsemble) < b->setting.knob(kEnsemble);
+                     return a->setting.knob(kEnsembleKnob) < b->setting.knob(kEnsembleKnob);
                    });
   const double share = budget.share();
   budget.done();
   if (!unperturbed || unperturbed->status != "ok") {
     return {{"skipped", "the case's own hydro (" +
-                            (hydro ? hydro->name() : "closure " + scene.closure) +
+                            (hydro ? hydro->name() : "closure " + scene.case_hydro->closure) +
                             ") did not finish, so there is nothing to inject errors into"}};
   }
   const double each = std::max(unperturbed->cost.wall_seconds, 1e-3);

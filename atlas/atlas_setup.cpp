@@ -80,15 +80,8 @@ AtlasSetup atlas_setup(const std::string& case_name, const std::vector<std::stri
   scene.name = config.name();
   scene.particles = config.boolean("md.enabled");
   scene.bins = config.int_value("atlas.bins");
-  scene.case_cells = hydro.cells;
-  scene.case_cfl = hydro.control.time_step.cfl;
-  scene.case_dt_max = hydro.control.time_step.dt_max;
-  scene.case_max_compression = hydro.control.time_step.max_compression;
-  scene.area_fraction = hydro.area_fraction;
   scene.sigmas = config.real("compare.sigmas");
-  scene.closure = hydro.closure;
   scene.agreement_fraction = config.real("compare.agreement_fraction");
-  scene.transverse = hydro.transverse;
   if (scene.particles) {
     // Every model is compared on the particles' bins: their ensemble mean has its error there.
     const int md_bins = config.int_value("md.bins");

@@ -70,20 +70,15 @@ json stability_map(const ModelFamily& family, const AtlasScene& scene,
                           {"failure", b.failure.empty() ? json(nullptr) : json(b.failure)},
                           {"probes", b.probes}});
   }
-  auto knobs_json = [&](const AtlasSetting& s) {
-    json j = family.setting_json(s);
-    j.erase("model");
-    return j;
-  };
   json grid_points = json::array();
   for (const AtlasRun* r : drawn_runs) {
     const std::string& c = state.at(r->setting.knobs);
-    json point = knobs_json(r->setting);
+    json point = family.knobs_json(r->setting);
     point["state"] = c.empty() ? "ok" : c;
     grid_points.push_back(point);
   }
   return {{"model", family.name()},
-          {"default", knobs_json(own)},
+          {"default", family.knobs_json(own)},
           {"grid", grid_points},
           {"boundaries", boundaries}};
 }

@@ -16,12 +16,11 @@ namespace {
 
 // A run's contact: its knobs other than the ensemble size, in the map's order.
 std::tuple<double, double, double> contact_of(const AtlasSetting& s) {
-  return {s.knob("max_overlap"), s.knob("steps_per_contact"), s.knob("adaptive_stiffness")};
+  return {s.knob(kMaxOverlapKnob), s.knob(kStepsPerContactKnob), s.knob(kAdaptiveStiffnessKnob)};
 }
 json contact_json(const ModelFamily& family, const AtlasSetting& s) {
-  json j = family.setting_json(s);
-  j.erase("model");
-  j.erase("ensemble");
+  json j = family.knobs_json(s);
+  j.erase(kEnsembleKnob);
   return j;
 }
 
@@ -58,7 +57,8 @@ json dem_map(const ModelFamily& family, const AtlasScene& scene, const std::vect
     }
     const auto key = contact_of(s);
     const auto it = chosen.find(key);
-    if (it == chosen.end() || s.knob("ensemble") > runs[it->second].setting.knob("ensemble")) {
+    if (it == chosen.end() ||
+        s.knob(kEnsembleKnob) > runs[it->second].setting.knob(kEnsembleKnob)) {
       chosen[key] = i;
     }
   }
@@ -83,8 +83,7 @@ json dem_map(const ModelFamily& family, const AtlasScene& scene, const std::vect
       }
     }
     state_at[key] = state;
-    json p = family.setting_json(r.setting);
-    p.erase("model");
+    json p = family.knobs_json(r.setting);
     p.update({{"state", state},
               {"wall_seconds", r.cost.wall_seconds},
               {"work", r.cost.work},
@@ -108,7 +107,7 @@ json dem_map(const ModelFamily& family, const AtlasScene& scene, const std::vect
   const auto own = contact_of(case_setting);
   const auto [case_overlap, case_steps, case_adaptive] = own;
   for (const bool overlap_knob : {true, false}) {
-    const char* knob = overlap_knob ? "max_overlap" : "steps_per_contact";
+    const char* knob = overlap_knob ? kMaxOverlapKnob : kStepsPerContactKnob;
     json b = {{"knob", knob}, {"direction", overlap_knob ? "up" : "down"}};
     if (!state_at.count(own)) {
       b["note"] = "the case's own contact did not run";

@@ -64,7 +64,7 @@ class HydroFamily : public ModelFamily {
   }
 
   AtlasSetting case_setting(const AtlasScene& scene) const override {
-    return setting(scene.case_cells, 1.0);
+    return setting(scene.case_hydro->cells, 1.0);
   }
 
   std::vector<AtlasSetting> grid(const AtlasScene& scene) const override {
@@ -72,7 +72,7 @@ class HydroFamily : public ModelFamily {
     std::vector<AtlasSetting> settings;
     for (int c : cells) {
       for (double f : factors) {
-        if (c == scene.case_cells && f == 1.0) continue;
+        if (c == scene.case_hydro->cells && f == 1.0) continue;
         settings.push_back(setting(c, f));
       }
     }
@@ -87,7 +87,7 @@ class HydroFamily : public ModelFamily {
   // and as 1/factor.
   double estimate(const AtlasSetting& s, const AtlasRun& pilot,
                   const AtlasScene& scene) const override {
-    const double c = s.knob(kCells) / scene.case_cells;
+    const double c = s.knob(kCells) / scene.case_hydro->cells;
     return std::max(pilot.cost.wall_seconds, 1e-3) * std::max(c * c, c) / s.knob(kStepFactor);
   }
   bool finer(const AtlasSetting& a, const AtlasSetting& b) const override {
@@ -104,7 +104,9 @@ class HydroFamily : public ModelFamily {
   std::vector<KnobPush> stability_pushes() const override {
     return {{kStepFactor, 2.0}, {kCells, 0.5}};
   }
-  bool is_case_model(const AtlasScene& scene) const override { return scene.closure == closure_; }
+  bool is_case_model(const AtlasScene& scene) const override {
+    return scene.case_hydro->closure == closure_;
+  }
   // The case keys (without "hydro.") of the transport factors (hydro/transport_factors.hpp), in
   // the order the atlas gives them.
   std::vector<std::string> injected_error_keys() const override {
@@ -117,9 +119,10 @@ class HydroFamily : public ModelFamily {
     std::vector<std::string> sets = {
         "hydro.closure=" + toml_quoted(closure_),
         "hydro.cells=" + std::to_string(std::lround(s.knob(kCells))),
-        "hydro.cfl=" + format_real(scene.case_cfl * f),
-        "hydro.dt_max=" + format_real(scene.case_dt_max * f),
-        "hydro.max_compression=" + format_real(scene.case_max_compression * f)};
+        "hydro.cfl=" + format_real(scene.case_hydro->control.time_step.cfl * f),
+        "hydro.dt_max=" + format_real(scene.case_hydro->control.time_step.dt_max * f),
+        "hydro.max_compression=" +
+            format_real(scene.case_hydro->control.time_step.max_compression * f)};
     if (!s.injected.empty()) {
       sets.push_back("hydro." + s.injected + "=" + format_real(s.injected_factor));
     }
@@ -156,7 +159,7 @@ class HydroFamily : public ModelFamily {
     std::vector<double> factors = c.reals("atlas.step_factors");
     if (cells.empty()) {
       for (double f : kCellFactors) {
-        const int n = std::max(4, int(std::lround(scene.case_cells * f)));
+        const int n = std::max(4, int(std::lround(scene.case_hydro->cells * f)));
         if (cells.empty() || n > cells.back()) cells.push_back(n);
       }
     }

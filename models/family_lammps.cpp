@@ -22,9 +22,9 @@ class LammpsFamily : public ParticleFamily {
   LammpsFamily() : ParticleFamily("lammps", {"C4", "v"}) {}
   std::vector<KnobSpec> knobs() const override {
     auto k = ParticleFamily::knobs();
-    k.push_back({"max_overlap", KnobSpec::Type::real, 0.0});
-    k.push_back({"steps_per_contact", KnobSpec::Type::integer, 0.0});
-    k.push_back({"adaptive_stiffness", KnobSpec::Type::flag, 0.0});
+    k.push_back({kMaxOverlapKnob, KnobSpec::Type::real, 0.0});
+    k.push_back({kStepsPerContactKnob, KnobSpec::Type::integer, 0.0});
+    k.push_back({kAdaptiveStiffnessKnob, KnobSpec::Type::flag, 0.0});
     return k;
   }
   bool has_contact_map() const override { return true; }
@@ -32,9 +32,9 @@ class LammpsFamily : public ParticleFamily {
   AtlasSetting case_setting(const AtlasScene& scene) const override {
     const CaseConfig& c = *scene.config;
     AtlasSetting s = ParticleFamily::case_setting(scene);
-    s.knobs["max_overlap"] = c.real("md.max_overlap");
-    s.knobs["steps_per_contact"] = double(c.int_value("md.steps_per_contact"));
-    s.knobs["adaptive_stiffness"] = c.boolean("md.adaptive_stiffness") ? 1.0 : 0.0;
+    s.knobs[kMaxOverlapKnob] = c.real("md.max_overlap");
+    s.knobs[kStepsPerContactKnob] = double(c.int_value("md.steps_per_contact"));
+    s.knobs[kAdaptiveStiffnessKnob] = c.boolean("md.adaptive_stiffness") ? 1.0 : 0.0;
     return s;
   }
 
@@ -45,29 +45,29 @@ class LammpsFamily : public ParticleFamily {
     const AtlasSetting own = case_setting(scene);
     std::vector<double> overlaps = c.reals("atlas.max_overlaps");
     if (overlaps.empty()) {
-      for (double f : kOverlapFactors) overlaps.push_back(own.knob("max_overlap") * f);
+      for (double f : kOverlapFactors) overlaps.push_back(own.knob(kMaxOverlapKnob) * f);
     }
     std::vector<int> steps;
     for (long long k : c.integers("atlas.steps_per_contacts")) steps.push_back(int(k));
     if (steps.empty()) {
       for (double f : kContactStepFactors) {
-        const int k = int(std::lround(own.knob("steps_per_contact") * f));
+        const int k = int(std::lround(own.knob(kStepsPerContactKnob) * f));
         if (steps.empty() || k > steps.back()) steps.push_back(k);
       }
     }
-    const double adaptive = own.knob("adaptive_stiffness");
+    const double adaptive = own.knob(kAdaptiveStiffnessKnob);
     std::vector<AtlasSetting> grid;
     auto add = [&](double overlap, double spc, double flag) {
       AtlasSetting s = own;
-      s.knobs["max_overlap"] = overlap;
-      s.knobs["steps_per_contact"] = spc;
-      s.knobs["adaptive_stiffness"] = flag;
+      s.knobs[kMaxOverlapKnob] = overlap;
+      s.knobs[kStepsPerContactKnob] = spc;
+      s.knobs[kAdaptiveStiffnessKnob] = flag;
       grid.push_back(s);
     };
     for (double overlap : overlaps) {
       for (int spc : steps) add(overlap, spc, adaptive);
     }
-    for (double overlap : overlaps) add(overlap, own.knob("steps_per_contact"), 1.0 - adaptive);
+    for (double overlap : overlaps) add(overlap, own.knob(kStepsPerContactKnob), 1.0 - adaptive);
     return grid;
   }
   // The case's own contact first.
@@ -84,31 +84,31 @@ class LammpsFamily : public ParticleFamily {
   // Larger ensemble, then smaller overlap, more steps, fixed (stiffest) contact.
   bool finer(const AtlasSetting& a, const AtlasSetting& b) const override {
     auto order = [](const AtlasSetting& s) {
-      return std::make_tuple(s.knob("ensemble"), -s.knob("max_overlap"),
-                             s.knob("steps_per_contact"), -s.knob("adaptive_stiffness"));
+      return std::make_tuple(s.knob(kEnsembleKnob), -s.knob(kMaxOverlapKnob),
+                             s.knob(kStepsPerContactKnob), -s.knob(kAdaptiveStiffnessKnob));
     };
     return order(a) > order(b);
   }
   std::vector<std::string> overrides(const AtlasScene& scene,
                                      const AtlasSetting& s) const override {
     std::vector<std::string> sets = ParticleFamily::overrides(scene, s);
-    sets.push_back("md.max_overlap=" + format_real(s.knob("max_overlap")));
+    sets.push_back("md.max_overlap=" + format_real(s.knob(kMaxOverlapKnob)));
     sets.push_back("md.steps_per_contact=" +
-                   std::to_string(std::lround(s.knob("steps_per_contact"))));
+                   std::to_string(std::lround(s.knob(kStepsPerContactKnob))));
     sets.push_back(std::string("md.adaptive_stiffness=") +
-                   (s.knob("adaptive_stiffness") != 0.0 ? "true" : "false"));
+                   (s.knob(kAdaptiveStiffnessKnob) != 0.0 ? "true" : "false"));
     return sets;
   }
 
  private:
   static bool same_contact(const AtlasSetting& a, const AtlasSetting& b) {
-    return a.knob("max_overlap") == b.knob("max_overlap") &&
-           a.knob("steps_per_contact") == b.knob("steps_per_contact") &&
-           a.knob("adaptive_stiffness") == b.knob("adaptive_stiffness");
+    return a.knob(kMaxOverlapKnob) == b.knob(kMaxOverlapKnob) &&
+           a.knob(kStepsPerContactKnob) == b.knob(kStepsPerContactKnob) &&
+           a.knob(kAdaptiveStiffnessKnob) == b.knob(kAdaptiveStiffnessKnob);
   }
   static atlas::ContactKnobs contact_of(const AtlasSetting& s) {
-    return {int(std::lround(s.knob("ensemble"))), s.knob("max_overlap"),
-            int(std::lround(s.knob("steps_per_contact"))), s.knob("adaptive_stiffness") != 0.0};
+    return {int(std::lround(s.knob(kEnsembleKnob))), s.knob(kMaxOverlapKnob),
+            int(std::lround(s.knob(kStepsPerContactKnob))), s.knob(kAdaptiveStiffnessKnob) != 0.0};
   }
 };
 

@@ -18,9 +18,8 @@
 namespace granvv::app {
 namespace {
 
-constexpr const char* kEnsemble = "ensemble";
 // The default ensemble sizes of the grid (docs/atlas.md).
-const std::vector<int> kEnsembles = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
+const std::vector<int> kEnsembleKnobs = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
 // The colour and marker of an engine without a family of its own.
 const ModelStyle kPlainStyle = {"C9", "X"};
 
@@ -90,7 +89,7 @@ std::string particle_failure(const std::string& what) {
 }  // namespace
 
 std::vector<KnobSpec> ParticleFamily::knobs() const {
-  return {{kEnsemble, KnobSpec::Type::integer, 0.0}};
+  return {{kEnsembleKnob, KnobSpec::Type::integer, 0.0}};
 }
 
 std::optional<std::string> ParticleFamily::not_applicable(const AtlasScene& scene) const {
@@ -105,39 +104,39 @@ bool ParticleFamily::is_case_model(const AtlasScene& scene) const {
 AtlasSetting ParticleFamily::case_setting(const AtlasScene& scene) const {
   AtlasSetting s;
   s.model = name();
-  s.knobs[kEnsemble] = double(scene.config->int_value("md.ensemble"));
+  s.knobs[kEnsembleKnob] = double(scene.config->int_value("md.ensemble"));
   return s;
 }
 
 AtlasSetting ParticleFamily::pilot(const AtlasScene& scene) const {
-  return with_knob(case_setting(scene), kEnsemble, 1.0);
+  return with_knob(case_setting(scene), kEnsembleKnob, 1.0);
 }
 
 std::vector<int> ParticleFamily::ensembles(const AtlasScene& scene) {
   std::vector<int> sizes;
   for (long long m : scene.config->integers("atlas.ensembles")) sizes.push_back(int(m));
-  return sizes.empty() ? kEnsembles : sizes;
+  return sizes.empty() ? kEnsembleKnobs : sizes;
 }
 
 std::vector<AtlasSetting> ParticleFamily::grid(const AtlasScene& scene) const {
   std::vector<AtlasSetting> grid;
-  for (int m : ensembles(scene)) grid.push_back(with_knob(case_setting(scene), kEnsemble, m));
+  for (int m : ensembles(scene)) grid.push_back(with_knob(case_setting(scene), kEnsembleKnob, m));
   return grid;
 }
 
 double ParticleFamily::estimate(const AtlasSetting& s, const AtlasRun& pilot,
                                 const AtlasScene&) const {
-  return std::max(pilot.cost.wall_seconds, 1e-3) * s.knob(kEnsemble) /
-         std::max(1.0, pilot.setting.knob(kEnsemble));
+  return std::max(pilot.cost.wall_seconds, 1e-3) * s.knob(kEnsembleKnob) /
+         std::max(1.0, pilot.setting.knob(kEnsembleKnob));
 }
 
 bool ParticleFamily::finer(const AtlasSetting& a, const AtlasSetting& b) const {
-  return a.knob(kEnsemble) > b.knob(kEnsemble);
+  return a.knob(kEnsembleKnob) > b.knob(kEnsembleKnob);
 }
 
 std::vector<std::string> ParticleFamily::overrides(const AtlasScene&, const AtlasSetting& s) const {
   return {"md.engine=" + toml_quoted(engine_),
-          "md.ensemble=" + std::to_string(std::lround(s.knob(kEnsemble)))};
+          "md.ensemble=" + std::to_string(std::lround(s.knob(kEnsembleKnob)))};
 }
 
 void ParticleFamily::run(const AtlasScene& scene, const CaseConfig& config, AtlasRun& run) const {

@@ -73,9 +73,15 @@ std::string ModelFamily::describe(const AtlasSetting& setting) const {
   return text;
 }
 
-nlohmann::json ModelFamily::setting_json(const AtlasSetting& setting) const {
-  nlohmann::json j = {{"model", setting.model}};
+nlohmann::json ModelFamily::knobs_json(const AtlasSetting& setting) const {
+  nlohmann::json j = nlohmann::json::object();
   for (const KnobSpec& k : knobs()) j[k.name] = knob_json(k, setting.knob(k.name));
+  return j;
+}
+
+nlohmann::json ModelFamily::setting_json(const AtlasSetting& setting) const {
+  nlohmann::json j = knobs_json(setting);
+  j["model"] = setting.model;
   if (!setting.injected.empty()) j[setting.injected] = setting.injected_factor;
   return j;
 }

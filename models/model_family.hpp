@@ -35,6 +35,14 @@ struct KnobSpec {
   bool quiet_when_absent = false;
 };
 
+// The knob every ensemble family has: its size, md.ensemble (models/particle_family.hpp).
+inline constexpr const char* kEnsembleKnob = "ensemble";
+// The contact knobs of a family with a contact map (has_contact_map): md.max_overlap,
+// md.steps_per_contact and md.adaptive_stiffness (models/family_lammps.cpp, atlas/dem_map.cpp).
+inline constexpr const char* kMaxOverlapKnob = "max_overlap";
+inline constexpr const char* kStepsPerContactKnob = "steps_per_contact";
+inline constexpr const char* kAdaptiveStiffnessKnob = "adaptive_stiffness";
+
 // How the report draws the family (matplotlib colour and marker), written to atlas.json.
 struct ModelStyle {
   std::string color;
@@ -105,8 +113,9 @@ class ModelFamily {
   virtual void judge(const AtlasScene&, AtlasRun&) const {}
 
   // "hydro/dilute cells=500 step_factor=1", "particles/event_driven ensemble=16".
-  virtual std::string describe(const AtlasSetting& setting) const;
-  // The setting as atlas.json gives it: the model and its knobs, each of its type.
+  std::string describe(const AtlasSetting& setting) const;
+  // The setting's knobs as atlas.json gives them, each of its type; and with its model.
+  nlohmann::json knobs_json(const AtlasSetting& setting) const;
   nlohmann::json setting_json(const AtlasSetting& setting) const;
 
  private:

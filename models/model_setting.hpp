@@ -67,27 +67,21 @@ struct AtlasScene {
   std::string name;
   // The resolved case (with the user's --set): where each family reads its own case values.
   std::shared_ptr<const CaseConfig> config;
-  // The case's own hydro (its closure, physics and knobs), as scene/hydro_scene.hpp makes it.
+  // The case's own hydro (its closure, cells, step bounds, transverse velocity), as
+  // scene/hydro_scene.hpp makes it.
   std::shared_ptr<const HydroScene> case_hydro;
-  // The case's own hydro knobs (the atlas's step factor 1).
-  int case_cells = 0;
-  double case_cfl = 0.0, case_dt_max = 0.0, case_max_compression = 0.0;
   std::vector<double> times;  // compared times, scaled units
   std::vector<double> crossing_levels;
-  int bins = 0;                // atlas.bins (a particle scene's md.bins)
-  double area_fraction = 0.0;  // physics.area_fraction (a particle scene's md.area_fraction)
-  bool particles = false;      // md.enabled
+  int bins = 0;            // atlas.bins (a particle scene's md.bins)
+  bool particles = false;  // md.enabled
   long long particle_count = 0;
   double md_t_end = 0.0, md_t_haff = 0.0;  // md.t_end and the kinetic-theory Haff time, MD units
   double t0_theory = 0.0;  // the Enskog kinetic-theory Haff time (with chi), scaled units
   double sigmas = 0.0;     // compare.sigmas: the allowance of σ-aware adequacy
-  // What the side-by-side comparison of the comparison power needs: the case's own closure,
-  // compare.agreement_fraction, the particles' initial signal-to-noise (scene/md_scene.hpp) and
-  // whether the hydro carries v_y (hydro.transverse_velocity).
-  std::string closure;
+  // What the side-by-side comparison of the comparison power needs beside the case's hydro:
+  // compare.agreement_fraction and the particles' initial signal-to-noise (scene/md_scene.hpp).
   double agreement_fraction = 0.0;
   double signal_to_noise = 0.0;
-  bool transverse = false;
   bool has_inertia_reference = false;
 };
 

@@ -30,8 +30,6 @@ AtlasScene scene_of(const std::string& name, const std::vector<std::string>& set
       app::CaseConfig::from_string(scene.source.text, scene.source.origin, sets));
   const app::HydroScene hydro = app::hydro_scene_from(*scene.config);
   scene.case_hydro = std::make_shared<const app::HydroScene>(hydro);
-  scene.case_cells = hydro.cells;
-  scene.closure = hydro.closure;
   scene.particles = scene.config->boolean("md.enabled");
   return scene;
 }
