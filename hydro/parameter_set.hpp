@@ -14,22 +14,31 @@ namespace granvv::hydro {
 // Named reals: a table such as [initial.constants] (name -> value).
 using NamedReals = std::map<std::string, double>;
 
-// A real, an integer, a text (a formula, a file path, a choice), a table of named reals or a
-// switch; the alternative is the parameter's type.
-using ParameterValue = std::variant<double, long long, std::string, NamedReals, bool>;
+// A real, an integer, a text (a formula, a file path, a choice), a table of named reals, a
+// switch, or a list of reals or of integers (an atlas grid); the alternative is the parameter's
+// type.
+using ParameterValue = std::variant<double, long long, std::string, NamedReals, bool,
+                                    std::vector<double>, std::vector<long long>>;
 
 // Allowed values: min/max bounds, each open or closed; no bound = unbounded. For a text
-// parameter, `choices` (empty = any text).
+// parameter, `choices` (empty = any text). For a list, the bounds hold for each element, and
+// `strictly_increasing` asks the elements to rise.
 struct ParameterRange {
   std::optional<double> min, max;
   bool min_exclusive = false, max_exclusive = false;
   std::vector<std::string> choices;
+  bool strictly_increasing = false;
 
   static ParameterRange any() { return {}; }
   static ParameterRange at_least(double lo) { return bounds(lo, std::nullopt, false); }
   static ParameterRange greater_than(double lo) { return bounds(lo, std::nullopt, true); }
   static ParameterRange closed(double lo, double hi) { return bounds(lo, hi, false); }
   static ParameterRange open_closed(double lo, double hi) { return bounds(lo, hi, true); }
+  // A list whose elements obey `each` and rise strictly.
+  static ParameterRange increasing(ParameterRange each) {
+    each.strictly_increasing = true;
+    return each;
+  }
   static ParameterRange one_of(std::vector<std::string> names) {
     ParameterRange r;
     r.choices = std::move(names);
@@ -56,6 +65,10 @@ struct ParameterSpec {
   bool is_text() const { return std::holds_alternative<std::string>(default_value); }
   bool is_named_reals() const { return std::holds_alternative<NamedReals>(default_value); }
   bool is_boolean() const { return std::holds_alternative<bool>(default_value); }
+  bool is_real_list() const { return std::holds_alternative<std::vector<double>>(default_value); }
+  bool is_integer_list() const {
+    return std::holds_alternative<std::vector<long long>>(default_value);
+  }
   bool operator==(const ParameterSpec& o) const;
 };
 

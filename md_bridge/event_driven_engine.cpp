@@ -59,6 +59,21 @@ const EngineKeys& EventDrivenEngine::keys() {
   return keys;
 }
 
+const EngineKeys& EventDrivenEngine::atlas_keys() {
+  using hydro::ParameterRange;
+  static const EngineKeys keys = {
+      {"particle_factors", std::vector<double>{},
+       ParameterRange::increasing(ParameterRange::closed(0.01, 100)),
+       "event_driven: particle counts as factors on the case's (md.box_width, and md.particles "
+       "where set, times each; Lx and the area fraction kept), each at md.ensemble ([] = the "
+       "case's count only)"},
+      {"collapse_rule_limit", 0.01, ParameterRange::closed(0, 1),
+       "event_driven: runs whose collapse rules changed more than this fraction of the "
+       "collisions fail as collapse_rule_active"},
+  };
+  return keys;
+}
+
 EventDrivenEngine::EventDrivenEngine(EventDrivenOptions options)
     : options_(std::move(options)), made_(std::chrono::steady_clock::now()) {
   const CollapseRule& rule = options_.collapse;

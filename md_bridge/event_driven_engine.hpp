@@ -54,6 +54,9 @@ class EventDrivenEngine final : public ParticleEngine {
   // Its own case keys: md.collapse_speed, md.contact_duration, md.contact_speed,
   // md.elastic_speed, md.max_collision_rate.
   static const EngineKeys& keys();
+  // The atlas's particle-count grid and its limit on the collapse rules
+  // (models/family_event_driven.cpp).
+  static const EngineKeys& atlas_keys();
 
   std::string name() const override { return "event_driven"; }
   std::string log_path() const override { return "none"; }

@@ -42,6 +42,19 @@ const EngineKeys& LammpsEngine::keys() {
   return keys;
 }
 
+const EngineKeys& LammpsEngine::atlas_keys() {
+  using hydro::ParameterRange;
+  static const EngineKeys keys = {
+      {"max_overlaps", std::vector<double>{},
+       ParameterRange::increasing(ParameterRange::open_closed(0, 0.1)),
+       "LAMMPS md.max_overlap values ([] = md.max_overlap times 1/2, 1, 2, 5, 10)"},
+      {"steps_per_contacts", std::vector<long long>{},
+       ParameterRange::increasing(ParameterRange::closed(10, 1e4)),
+       "LAMMPS md.steps_per_contact values ([] = md.steps_per_contact times 1/3, 1/2, 1, 2)"},
+  };
+  return keys;
+}
+
 double fastest_relative_speed(const double* v, int n, MPI_Comm comm) {
   double fastest = 0.0;
   for (int i = 0; i < n; ++i) {

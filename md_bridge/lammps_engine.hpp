@@ -46,6 +46,8 @@ class LammpsEngine final : public ParticleEngine {
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
   // Its own case keys: md.max_overlap, md.steps_per_contact, md.adaptive_stiffness.
   static const EngineKeys& keys();
+  // The atlas's grid of the contact knobs (models/family_lammps.cpp).
+  static const EngineKeys& atlas_keys();
 
   std::string name() const override { return "lammps"; }
   std::string log_path() const override { return options_.log_file; }

@@ -15,18 +15,21 @@ using WorkEstimator = ParticleWorkEstimate (*)(const ParticleWorkQuestion&);
 
 using KeyDeclaration = const EngineKeys& (*)();
 
-// One row per engine: its md.engine value, its maker, its work estimate and its own keys.
+// One row per engine: its md.engine value, its maker, its work estimate, its own keys and its
+// atlas grid's keys (nullptr: none).
 struct EngineRow {
   std::string name;
   Maker make;
   WorkEstimator work;
   KeyDeclaration keys;
+  KeyDeclaration atlas_keys = nullptr;
 };
 
 const std::vector<EngineRow>& engines() {
   static const std::vector<EngineRow> rows = {
-      {"lammps", &LammpsEngine::make, &lammps_work, &LammpsEngine::keys},
-      {"event_driven", &EventDrivenEngine::make, &event_driven_work, &EventDrivenEngine::keys},
+      {"lammps", &LammpsEngine::make, &lammps_work, &LammpsEngine::keys, &LammpsEngine::atlas_keys},
+      {"event_driven", &EventDrivenEngine::make, &event_driven_work, &EventDrivenEngine::keys,
+       &EventDrivenEngine::atlas_keys},
   };
   return rows;
 }
@@ -51,16 +54,21 @@ std::vector<std::string> particle_engine_names() {
 const std::vector<ParticleEngineKey>& particle_engine_keys() {
   static const std::vector<ParticleEngineKey> keys = [] {
     std::vector<ParticleEngineKey> out;
-    for (const EngineRow& row : engines()) {
-      for (const hydro::ParameterSpec& spec : row.keys()) {
+    auto add = [&out](const EngineRow& row, const EngineKeys& keys, const std::string& section) {
+      for (const hydro::ParameterSpec& spec : keys) {
+        const ParticleEngineKey key{spec, row.name, section};
         for (const ParticleEngineKey& other : out) {
-          if (other.spec.name == spec.name) {
+          if (other.key() == key.key()) {
             throw std::logic_error("particle engines " + other.engine + " and " + row.name +
-                                   " both declare md." + spec.name);
+                                   " both declare " + key.key());
           }
         }
-        out.push_back({spec, row.name});
+        out.push_back(key);
       }
+    };
+    for (const EngineRow& row : engines()) {
+      add(row, row.keys(), "md");
+      if (row.atlas_keys) add(row, row.atlas_keys(), "atlas");
     }
     return out;
   }();

@@ -13,14 +13,17 @@ namespace granvv::md {
 // The allowed values of md.engine (its default is in scene/case_schema.cpp).
 std::vector<std::string> particle_engine_names();
 
-// A key an engine declares as its own: the case key md.<spec.name>.
+// A key an engine declares as its own: the case key md.<spec.name> of its settings (keys()), or
+// atlas.<spec.name> of the grid the atlas runs it on (atlas_keys(), read by the engine's model
+// family in models/).
 struct ParticleEngineKey {
   hydro::ParameterSpec spec;
-  std::string engine;  // the md.engine it belongs to
-  std::string key() const { return "md." + spec.name; }
+  std::string engine;          // the md.engine it belongs to
+  std::string section = "md";  // "md" or "atlas"
+  std::string key() const { return section + "." + spec.name; }
 };
-// Every engine's own keys, engine by engine in registry order, each in its declared order. Two
-// engines may not declare the same key (std::logic_error).
+// Every engine's own keys, engine by engine in registry order, its md keys then its atlas keys,
+// each in its declared order. Two engines may not declare the same key (std::logic_error).
 const std::vector<ParticleEngineKey>& particle_engine_keys();
 
 // Throws std::invalid_argument for an unknown name (listing the known ones) or settings the

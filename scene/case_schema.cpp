@@ -42,6 +42,7 @@ Constraint constraint_of(const hydro::ParameterRange& range) {
   c.min_exclusive = range.min_exclusive;
   c.max_exclusive = range.max_exclusive;
   c.choices = range.choices;
+  c.strictly_increasing = range.strictly_increasing;
   return c;
 }
 
@@ -51,6 +52,8 @@ ValueType value_type_of(const hydro::ParameterSpec& spec) {
   if (spec.is_text()) return kString;
   if (spec.is_named_reals()) return ValueType::real_table;
   if (spec.is_boolean()) return kBoolean;
+  if (spec.is_real_list()) return kReals;
+  if (spec.is_integer_list()) return kIntegers;
   return kReal;
 }
 
@@ -76,12 +79,12 @@ std::vector<KeySpec> initial_condition_rows() {
   return rows;
 }
 
-// The keys each particle engine declares as its own (md_bridge/particle_engine_registry.hpp),
-// with the engine's help as written beside it.
-std::vector<KeySpec> particle_engine_rows() {
+// The keys each particle engine declares as its own in table `section` ("md", "atlas";
+// md_bridge/particle_engine_registry.hpp), with the engine's help as written beside it.
+std::vector<KeySpec> particle_engine_rows(const std::string& section) {
   std::vector<KeySpec> rows;
   for (const auto& key : md::particle_engine_keys()) {
-    rows.push_back(declared_row(key.key(), key.spec, key.spec.help));
+    if (key.section == section) rows.push_back(declared_row(key.key(), key.spec, key.spec.help));
   }
   return rows;
 }
@@ -266,19 +269,8 @@ std::vector<KeySpec> rows_without_declared() {
        "factors on hydro.cfl, hydro.dt_max and hydro.max_compression ([] = 1/4, 1/2, 1, 2, 4)"},
       {"atlas.bins", kInteger, 64, closed_closed(4, 4096),
        "bins on which every model's fields are compared (a particle scene: md.bins)"},
-      {"atlas.collapse_rule_limit", kReal, 0.01, closed_closed(0, 1),
-       "event-driven runs whose collapse rules changed more than this fraction of the collisions "
-       "fail as collapse_rule_active"},
       {"atlas.ensembles", kIntegers, kEmpty, increasing(closed_closed(1, 1000)),
-       "ensemble sizes of the event-driven engine ([] = 1, 2, 4, ..., 512 within the budget)"},
-      {"atlas.particle_factors", kReals, kEmpty, increasing(closed_closed(0.01, 100)),
-       "event_driven: particle counts as factors on the case's (md.box_width, and md.particles "
-       "where set, times each; Lx and the area fraction kept), each at md.ensemble ([] = the "
-       "case's count only)"},
-      {"atlas.max_overlaps", kReals, kEmpty, increasing(open_closed(0, 0.1)),
-       "LAMMPS md.max_overlap values ([] = md.max_overlap times 1/2, 1, 2, 5, 10)"},
-      {"atlas.steps_per_contacts", kIntegers, kEmpty, increasing(closed_closed(10, 1e4)),
-       "LAMMPS md.steps_per_contact values ([] = md.steps_per_contact times 1/3, 1/2, 1, 2)"},
+       "ensemble sizes of every particle engine ([] = 1, 2, 4, ..., 512 within the budget)"},
       {"atlas.injected_errors", kReals, kEmpty, increasing(open_closed(0, 99)),
        "relative model errors eps injected into the hydro for the comparison power, each "
        "transport factor times and over (1 + eps) ([] = 0.01 * 2^(k/2), k = 0..16)"},
@@ -320,7 +312,8 @@ const std::vector<KeySpec>& case_schema() {
     std::vector<KeySpec> all = rows_without_declared();
     all = inserted_after(std::move(all), "physics", initial_condition_rows());
     all = inserted_after(std::move(all), "hydro.cooling_factor", closure_rows());
-    all = inserted_after(std::move(all), "md.kernel_width", particle_engine_rows());
+    all = inserted_after(std::move(all), "md.kernel_width", particle_engine_rows("md"));
+    all = inserted_after(std::move(all), "atlas.ensembles", particle_engine_rows("atlas"));
     return with_integer_bounds(std::move(all));
   }();
   return rows;

@@ -63,6 +63,13 @@ struct Default {
   Default(const char* v) : kind(Kind::value), value(std::string(v)) {}
   Default(const std::string& v) : kind(Kind::value), value(v) {}
   Default(const RealTable& v) : kind(Kind::value), value(v) {}
+  // A declared list (hydro::ParameterSpec): an empty one is the empty array.
+  Default(const std::vector<double>& v) : kind(v.empty() ? Kind::empty_array : Kind::value) {
+    value = v;
+  }
+  Default(const std::vector<long long>& v) : kind(v.empty() ? Kind::empty_array : Kind::value) {
+    value = v;
+  }
   static Default required() { return Default(Kind::required); }
   static Default file_stem() { return Default(Kind::file_stem); }
   static Default empty_array() { return Default(Kind::empty_array); }
