@@ -132,15 +132,20 @@ ValidityScales EnskogClosure::validity_scales() const {
 }
 
 std::string EnskogClosure::validity_problem(const std::vector<double>& n) const {
+  return freezing_problem(area_fraction_, n, name());
+}
+
+std::string freezing_problem(double area_fraction, const std::vector<double>& n,
+                             const std::string& closure) {
   size_t densest = 0;
   for (size_t i = 1; i < n.size(); ++i) {
     if (n[i] > n[densest]) densest = i;
   }
-  if (n.empty() || area_fraction_ * n[densest] < enskog::kFreezingAreaFraction) return {};
-  return "the area fraction phi0 n = " + format(area_fraction_ * n[densest]) + " in cell " +
+  if (n.empty() || area_fraction * n[densest] < enskog::kFreezingAreaFraction) return {};
+  return "the area fraction phi0 n = " + format(area_fraction * n[densest]) + " in cell " +
          std::to_string(densest) + " reached the freezing fraction " +
-         format(enskog::kFreezingAreaFraction) +
-         " of hard disks, past which the enskog closure does not apply";
+         format(enskog::kFreezingAreaFraction) + " of hard disks, past which the " + closure +
+         " closure does not apply";
 }
 
 }  // namespace granvv::hydro

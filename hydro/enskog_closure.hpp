@@ -46,4 +46,10 @@ class EnskogClosure final : public Closure {
   double cooling_coefficient_;  // (8q/K) g
 };
 
+// Why a closure of dense hard disks no longer describes cells of densities n (empty while it
+// does): the densest cell's area fraction phi0 n reached the freezing fraction. `closure` names
+// the closure in the reason.
+std::string freezing_problem(double area_fraction, const std::vector<double>& n,
+                             const std::string& closure);
+
 }  // namespace granvv::hydro
