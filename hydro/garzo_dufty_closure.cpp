@@ -1,14 +1,9 @@
 #include "hydro/garzo_dufty_closure.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <limits>
 #include <stdexcept>
 
-#include "hydro/enskog_closure.hpp"
 #include "hydro/enskog_factors.hpp"
-#include "hydro/haff.hpp"
 
 namespace granvv::hydro {
 
@@ -30,18 +25,22 @@ double area_fraction_of(const ClosureParameters& params) {
 
 GarzoDuftyClosure::GarzoDuftyClosure(const Physics& physics, double area_fraction,
                                      CoolingRate cooling)
-    : physics_(physics),
-      area_fraction_(area_fraction),
-      restitution_(1.0 - 2.0 * physics.q),
-      reduced_(garzo_dufty::dilute_coefficients(1.0 - 2.0 * physics.q)),
-      cooling_coefficient_(8.0 * physics.q / physics.K * inelastic_loss_factor(cooling, physics.q) *
-                           (1.0 + 3.0 * reduced_.a2 / 16.0)) {
+    : GarzoDuftyClosure(physics, area_fraction, cooling,
+                        garzo_dufty::dilute_coefficients(1.0 - 2.0 * physics.q)) {
   if (const auto problem =
           parameter_problem({physics, {{EnskogClosure::kAreaFractionParameter, area_fraction}}})) {
-    throw std::invalid_argument("garzo_dufty closure: area fraction " + format(area_fraction) +
-                                ": " + problem->reason);
+    throw std::invalid_argument("garzo_dufty closure: " + problem->parameter + ": " +
+                                problem->reason);
   }
 }
+
+GarzoDuftyClosure::GarzoDuftyClosure(const Physics& physics, double area_fraction,
+                                     CoolingRate cooling,
+                                     const garzo_dufty::DiluteCoefficients& reduced)
+    : EnskogClosure(
+          physics, area_fraction, cooling,
+          {reduced.viscosity, reduced.conductivity, reduced.mu, 1.0 + 3.0 * reduced.a2 / 16.0}),
+      reduced_(reduced) {}
 
 std::unique_ptr<Closure> GarzoDuftyClosure::make(const ClosureParameters& params) {
   return std::make_unique<GarzoDuftyClosure>(params.physics, area_fraction_of(params),
@@ -50,6 +49,17 @@ std::unique_ptr<Closure> GarzoDuftyClosure::make(const ClosureParameters& params
 
 std::optional<ClosureParameterProblem> GarzoDuftyClosure::parameter_problem(
     const ClosureParameters& params) {
+  // A mode at pressure balance is conducted by kappa - mu p_T/p_n >= kappa - mu n/T (p_T <= p_n):
+  // the first Sonine kappa* - mu* falls through 0 near r = 0.345, below which the closure would
+  // sharpen such a mode instead of smoothing it.
+  const double r = 1.0 - 2.0 * params.physics.q;
+  const auto reduced = garzo_dufty::dilute_coefficients(r);
+  if (!(reduced.conductivity - reduced.mu > 0.0)) {
+    return ClosureParameterProblem{
+        "q", "the garzo_dufty closure's conduction at pressure balance kappa* - mu* = " +
+                 format(reduced.conductivity - reduced.mu) + " at r = " + format(r) +
+                 " is not positive (first Sonine approximation; it is for r > 0.345)"};
+  }
   const double phi0 = area_fraction_of(params);
   if (phi0 >= 0.0 && phi0 < enskog::kFreezingAreaFraction) return std::nullopt;
   return ClosureParameterProblem{
@@ -57,98 +67,6 @@ std::optional<ClosureParameterProblem> GarzoDuftyClosure::parameter_problem(
       "the garzo_dufty closure needs the mean area fraction phi0 in [0, " +
           format(enskog::kFreezingAreaFraction) +
           "), below the freezing of hard disks (0: the dilute gas)"};
-}
-
-void GarzoDuftyClosure::cell_coefficients(const std::vector<double>& n,
-                                          const std::vector<double>& T,
-                                          CellCoefficients& out) const {
-  const size_t cells = n.size();
-  out.resize(cells);
-  const double eta0 = 0.25 * physics_.K * reduced_.viscosity;
-  const double kappa0 = physics_.K * reduced_.conductivity;
-  const double mu0 = physics_.K * reduced_.mu;
-  const double r = restitution_;
-#pragma GCC ivdep  // element i reads only element i
-  for (size_t i = 0; i < cells; ++i) {
-    const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
-    const double phi = area_fraction_ * ni;
-    const double nT = ni * Ti;
-    out.pressure[i] = nT * enskog::pressure_factor(phi, r);
-    out.adiabatic_modulus[i] = nT * enskog::sound_speed_factor(phi, r);
-    const double sqrt_T = std::sqrt(Ti);
-    out.viscosity[i] = eta0 * sqrt_T * enskog::viscosity_factor(phi);
-    out.shear_viscosity[i] = eta0 * sqrt_T * enskog::shear_viscosity_factor(phi);
-    const double f_kappa = enskog::conductivity_factor(phi);
-    out.conductivity[i] = kappa0 * sqrt_T * f_kappa;
-    out.mu[i] = mu0 * Ti * sqrt_T * f_kappa / ni;  // T kappa0 mu* / n
-  }
-}
-
-void GarzoDuftyClosure::sound_speed(const std::vector<double>& n, const std::vector<double>& T,
-                                    std::vector<double>& c) const {
-  c.resize(n.size());
-  for (size_t i = 0; i < n.size(); ++i) {
-    c[i] = std::sqrt(T[i] * enskog::sound_speed_factor(area_fraction_ * n[i], restitution_));
-  }
-}
-
-void GarzoDuftyClosure::cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
-                                     std::vector<double>& rate) const {
-  rate.resize(n.size());
-  for (size_t i = 0; i < n.size(); ++i) {
-    const double effective_n = n[i] * enskog::cooling_factor(area_fraction_ * n[i]);
-    rate[i] = cooling_coefficient_ * effective_n * T[i] * std::sqrt(T[i]);
-  }
-}
-
-void GarzoDuftyClosure::cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
-                             std::vector<double>& cooled) const {
-  // At fixed n the sink is c (n chi) T^{3/2}: Haff's exact solution with n chi for n.
-  cooled.resize(n.size());
-  for (size_t i = 0; i < n.size(); ++i) {
-    const double effective_n = n[i] * enskog::cooling_factor(area_fraction_ * n[i]);
-    cooled[i] = cool_exactly(T[i], effective_n, cooling_coefficient_, dt);
-  }
-}
-
-HcsLinearisation GarzoDuftyClosure::hcs_linearisation() const {
-  // At n = T = 1: phi = phi0. Derivatives in n go through phi = phi0 n (d/dn = phi0 d/dphi).
-  const double phi = area_fraction_, r = restitution_;
-  const double chi = enskog::cooling_factor(phi);
-  const double f_p = enskog::pressure_factor(phi, r);
-  HcsLinearisation h;
-  const double rate = cooling_coefficient_ * chi;  // Lambda(1, 1)
-  h.haff_time = 2.0 / rate;                        // +inf for q = 0
-  h.epsilon = 0.5 * rate;
-  h.pressure_density = f_p + phi * enskog::pressure_factor_derivative(phi, r);
-  h.pressure_temperature = f_p;
-  h.compression_heating = f_p;
-  h.viscosity = 0.25 * physics_.K * reduced_.viscosity * enskog::viscosity_factor(phi);
-  h.shear_viscosity = 0.25 * physics_.K * reduced_.viscosity * enskog::shear_viscosity_factor(phi);
-  h.conductivity = physics_.K * reduced_.conductivity * enskog::conductivity_factor(phi);
-  h.mu = physics_.K * reduced_.mu * enskog::conductivity_factor(phi);
-  // Lambda = c n chi(phi0 n) T^{3/2}: dLambda/dn = c (chi + phi chi').
-  h.cooling_density = cooling_coefficient_ * (chi + phi * enskog::cooling_factor_derivative(phi));
-  h.cooling_temperature = h.epsilon;  // (3/2 - 1) Lambda
-  // The clustering mode grows while (p_n kappa - p_T mu) kx^2 < p_T Lambda_n - p_n Lambda_T'
-  // (hydro/closure.hpp); with p_n kappa <= p_T mu every short wave would (not for r >= 0.5).
-  const double damping = h.pressure_density * h.conductivity - h.pressure_temperature * h.mu;
-  const double clustering_kx2 =
-      (h.pressure_temperature * h.cooling_density - h.pressure_density * h.cooling_temperature) /
-      damping;
-  const double shear_kx2 = h.epsilon / h.shear_viscosity;
-  h.clustering_cutoff_mode = damping > 0.0 ? std::sqrt(std::max(clustering_kx2, 0.0)) / (2.0 * kPi)
-                                           : std::numeric_limits<double>::infinity();
-  h.shear_cutoff_mode = std::sqrt(std::max(shear_kx2, 0.0)) / (2.0 * kPi);
-  return h;
-}
-
-ValidityScales GarzoDuftyClosure::validity_scales() const {
-  return {physics_.K, area_fraction_, area_fraction_ > 0.0, enskog::kFreezingAreaFraction};
-}
-
-std::string GarzoDuftyClosure::validity_problem(const std::vector<double>& n) const {
-  return freezing_problem(area_fraction_, n, name());
 }
 
 }  // namespace granvv::hydro

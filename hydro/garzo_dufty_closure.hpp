@@ -14,42 +14,33 @@
 // r-dependence of the dilute gas times the elastic Enskog factors, so it leaves out the
 // r-dependence of the collisional transfer (Garzo & Dufty 1999, Sec. IV), a correction of
 // order (1 - r) phi. At r = 1 it is the Enskog closure, at phi0 = 0 and r = 1 the dilute one.
+// It is the Enskog closure with the multipliers eta*, kappa*, mu*, 1 + 3 a2/16
+// (InelasticTransport, hydro/enskog_closure.hpp), allowing phi0 = 0.
+#include <memory>
+#include <optional>
 #include <string>
-#include <vector>
 
-#include "hydro/closure.hpp"
+#include "hydro/enskog_closure.hpp"
 #include "hydro/garzo_dufty_coefficients.hpp"
 
 namespace granvv::hydro {
 
-class GarzoDuftyClosure final : public Closure {
+class GarzoDuftyClosure final : public EnskogClosure {
  public:
-  // area_fraction phi0 in [0, kFreezingAreaFraction) (else std::invalid_argument); 0: dilute.
+  // area_fraction phi0 in [0, kFreezingAreaFraction), 0: dilute; and r with kappa* > mu*
+  // (r > 0.345). Else std::invalid_argument.
   GarzoDuftyClosure(const Physics& physics, double area_fraction, CoolingRate cooling);
   static std::unique_ptr<Closure> make(const ClosureParameters& params);
   static std::optional<ClosureParameterProblem> parameter_problem(const ClosureParameters& params);
 
   const garzo_dufty::DiluteCoefficients& reduced() const { return reduced_; }
-
   std::string name() const override { return "garzo_dufty"; }
-  void cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
-                         CellCoefficients& out) const override;
-  void sound_speed(const std::vector<double>& n, const std::vector<double>& T,
-                   std::vector<double>& c) const override;
-  void cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
-                    std::vector<double>& rate) const override;
-  void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
-            std::vector<double>& cooled) const override;
-  HcsLinearisation hcs_linearisation() const override;
-  ValidityScales validity_scales() const override;
-  std::string validity_problem(const std::vector<double>& n) const override;
 
  private:
-  Physics physics_;
-  double area_fraction_;  // phi0: phi = phi0 n (0: dilute)
-  double restitution_;    // r = 1 - 2q
+  GarzoDuftyClosure(const Physics& physics, double area_fraction, CoolingRate cooling,
+                    const garzo_dufty::DiluteCoefficients& reduced);
+
   garzo_dufty::DiluteCoefficients reduced_;
-  double cooling_coefficient_;  // (8q/K) g (1 + 3 a2/16)
 };
 
 }  // namespace granvv::hydro

@@ -141,6 +141,11 @@ TEST(GarzoDuftyClosure, RefusesAnAreaFractionOutsideTheFluid) {
   EXPECT_FALSE(closure_parameter_problem("garzo_dufty", {Physics{1e-3, 0.05}, {}}).has_value());
   EXPECT_THROW(GarzoDuftyClosure(Physics{1e-3, 0.05}, -0.1, CoolingRate::exact),
                std::invalid_argument);
+  // Below r = 0.345 the first Sonine kappa* - mu* is negative: refused, naming physics.q.
+  const auto strong = closure_parameter_problem("garzo_dufty", {Physics{1e-3, 0.33}, {}});
+  ASSERT_TRUE(strong.has_value());
+  EXPECT_EQ(strong->parameter, "q");
+  EXPECT_FALSE(closure_parameter_problem("garzo_dufty", {Physics{1e-3, 0.32}, {}}).has_value());
   EXPECT_TRUE(closure_has_density_heat_flux("garzo_dufty"));
   EXPECT_FALSE(closure_has_density_heat_flux("dilute"));
   EXPECT_FALSE(closure_has_density_heat_flux("enskog"));
