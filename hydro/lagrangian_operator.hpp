@@ -16,8 +16,9 @@
 // with the pressure: explicit, at the pass's densities (in the corrector those of the mean of
 // the start and predicted widths, so time-centred to second order). It is conservative (a flux
 // between cells) and needs no step limit of its own: it drives T but not n directly, and the
-// implicit conduction bounds the temperature it drives in a cell to (mu/kappa) times the density
-// contrast, a fraction of the pressure's own response (mu/kappa < 0.2 for r >= 0.8); the
+// implicit conduction bounds the relative temperature change it drives in a cell to
+// mu n/(kappa T) times the relative density contrast (Garzo-Dufty: mu*/kappa* = 0.16 at r = 0.9,
+// 0.33 at r = 0.8), less than the adiabatic response of the pressure to that contrast; the
 // heating limit of the step (TimeStepControl::max_temperature_change) counts it with the work
 // and the conduction. A closure with mu = 0 everywhere (the dilute and Enskog ones) skips it,
 // so its runs are those of the paper's Eq. (2) bit for bit.
