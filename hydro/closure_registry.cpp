@@ -6,6 +6,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/enskog_closure.hpp"
+#include "hydro/garzo_dufty_closure.hpp"
 #include "hydro/scaled_closure.hpp"
 
 namespace granvv::hydro {
@@ -15,10 +16,13 @@ struct RegisteredClosure {
   std::function<std::unique_ptr<Closure>(const ClosureParameters&)> make;
   // Empty: the closure reads no parameter beyond K, q and the cooling rate.
   std::function<std::optional<ClosureParameterProblem>(const ClosureParameters&)> problem;
-  // Its own case keys hydro.<name> (closure.hpp, ClosureKey). Neither closure has one today:
-  // both read physics.area_fraction (the Enskog closure for chi(phi), the dilute one for its
-  // area-fraction validity monitor), so that key is the schema's.
+  // Its own case keys hydro.<name> (closure.hpp, ClosureKey). No closure has one today: all
+  // read physics.area_fraction (the Enskog and Garzo-Dufty closures for chi(phi), the dilute
+  // one for its area-fraction validity monitor), so that key is the schema's.
   std::vector<ParameterSpec> keys;
+  // Whether it has a heat flux down the density gradient (mu != 0 for r < 1), so that an
+  // injected error in mu (hydro.mu_factor) can change its runs.
+  bool density_heat_flux = false;
 };
 
 const std::map<std::string, RegisteredClosure>& closure_registry() {
@@ -30,8 +34,10 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
                                                  phi0 == p.extra.end() ? 0.0 : phi0->second);
         },
         {},
-        {}}},
-      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}}},
+        {},
+        false}},
+      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}, false}},
+      {"garzo_dufty", {&GarzoDuftyClosure::make, &GarzoDuftyClosure::parameter_problem, {}, true}},
   };
   return registry;
 }
@@ -59,6 +65,10 @@ std::optional<ClosureParameterProblem> closure_parameter_problem(const std::stri
                                                                  const ClosureParameters& params) {
   const auto& closure = find_closure(name);
   return closure.problem ? closure.problem(params) : std::nullopt;
+}
+
+bool closure_has_density_heat_flux(const std::string& name) {
+  return find_closure(name).density_heat_flux;
 }
 
 const std::vector<ClosureKey>& closure_keys() {

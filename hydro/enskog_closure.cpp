@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "hydro/enskog_factors.hpp"
@@ -25,12 +26,17 @@ double area_fraction_of(const ClosureParameters& params) {
 
 }  // namespace
 
-EnskogClosure::EnskogClosure(const Physics& physics, double area_fraction, CoolingRate cooling)
+EnskogClosure::EnskogClosure(const Physics& physics, double area_fraction, CoolingRate cooling,
+                             const InelasticTransport& transport)
     : physics_(physics),
       area_fraction_(area_fraction),
       restitution_(1.0 - 2.0 * physics.q),
-      cooling_coefficient_(8.0 * physics.q / physics.K *
-                           inelastic_loss_factor(cooling, physics.q)) {
+      transport_(transport),
+      cooling_coefficient_(8.0 * physics.q / physics.K * inelastic_loss_factor(cooling, physics.q) *
+                           transport.cooling) {}
+
+EnskogClosure::EnskogClosure(const Physics& physics, double area_fraction, CoolingRate cooling)
+    : EnskogClosure(physics, area_fraction, cooling, InelasticTransport{}) {
   if (const auto problem =
           parameter_problem({physics, {{kAreaFractionParameter, area_fraction}}})) {
     throw std::invalid_argument("enskog closure: area fraction " + format(area_fraction) + ": " +
@@ -56,7 +62,10 @@ void EnskogClosure::cell_coefficients(const std::vector<double>& n, const std::v
                                       CellCoefficients& out) const {
   const size_t cells = n.size();
   out.resize(cells);
-  const double quarter_K = 0.25 * physics_.K, K = physics_.K, r = restitution_;
+  const double eta0 = 0.25 * physics_.K * transport_.viscosity;
+  const double kappa0 = physics_.K * transport_.conductivity;
+  const double mu0 = physics_.K * transport_.mu;
+  const double r = restitution_;
 #pragma GCC ivdep  // element i reads only element i
   for (size_t i = 0; i < cells; ++i) {
     const double ni = n[i], Ti = T[i];  // loaded once: the outputs might alias the inputs
@@ -65,9 +74,11 @@ void EnskogClosure::cell_coefficients(const std::vector<double>& n, const std::v
     out.pressure[i] = nT * enskog::pressure_factor(phi, r);
     out.adiabatic_modulus[i] = nT * enskog::sound_speed_factor(phi, r);
     const double sqrt_T = std::sqrt(Ti);
-    out.viscosity[i] = quarter_K * sqrt_T * enskog::viscosity_factor(phi);
-    out.shear_viscosity[i] = quarter_K * sqrt_T * enskog::shear_viscosity_factor(phi);
-    out.conductivity[i] = K * sqrt_T * enskog::conductivity_factor(phi);
+    out.viscosity[i] = eta0 * sqrt_T * enskog::viscosity_factor(phi);
+    out.shear_viscosity[i] = eta0 * sqrt_T * enskog::shear_viscosity_factor(phi);
+    const double f_kappa = enskog::conductivity_factor(phi);
+    out.conductivity[i] = kappa0 * sqrt_T * f_kappa;
+    out.mu[i] = mu0 * Ti * sqrt_T * f_kappa / ni;  // T kappa0 mu* F_kappa / n (0: mu* = 0)
   }
 }
 
@@ -110,35 +121,49 @@ HcsLinearisation EnskogClosure::hcs_linearisation() const {
   h.pressure_density = f_p + phi * enskog::pressure_factor_derivative(phi, r);
   h.pressure_temperature = f_p;
   h.compression_heating = f_p;
-  h.viscosity = 0.25 * physics_.K * enskog::viscosity_factor(phi);
-  h.shear_viscosity = 0.25 * physics_.K * enskog::shear_viscosity_factor(phi);
-  h.conductivity = physics_.K * enskog::conductivity_factor(phi);
+  h.viscosity = 0.25 * physics_.K * transport_.viscosity * enskog::viscosity_factor(phi);
+  h.shear_viscosity =
+      0.25 * physics_.K * transport_.viscosity * enskog::shear_viscosity_factor(phi);
+  const double f_kappa = enskog::conductivity_factor(phi);
+  h.conductivity = physics_.K * transport_.conductivity * f_kappa;
+  h.mu = physics_.K * transport_.mu * f_kappa;
   // Lambda = c n chi(phi0 n) T^{3/2}: dLambda/dn = c (chi + phi chi').
   h.cooling_density = cooling_coefficient_ * (chi + phi * enskog::cooling_factor_derivative(phi));
   h.cooling_temperature = h.epsilon;  // (3/2 - 1) Lambda
+  // The clustering mode grows while (p_n kappa - p_T mu) kx^2 < p_T Lambda_n - p_n Lambda_T'
+  // (hydro/closure.hpp); were p_n kappa <= p_T mu, every short wave would (no closure here lets
+  // it: hydro/garzo_dufty_closure.cpp). mu = 0 subtracts an exact 0.
+  const double damping = h.pressure_density * h.conductivity - h.pressure_temperature * h.mu;
   const double clustering_kx2 =
       (h.pressure_temperature * h.cooling_density - h.pressure_density * h.cooling_temperature) /
-      (h.pressure_density * h.conductivity);
+      damping;
   const double shear_kx2 = h.epsilon / h.shear_viscosity;
-  h.clustering_cutoff_mode = std::sqrt(std::max(clustering_kx2, 0.0)) / (2.0 * kPi);
+  h.clustering_cutoff_mode = damping > 0.0 ? std::sqrt(std::max(clustering_kx2, 0.0)) / (2.0 * kPi)
+                                           : std::numeric_limits<double>::infinity();
   h.shear_cutoff_mode = std::sqrt(std::max(shear_kx2, 0.0)) / (2.0 * kPi);
   return h;
 }
 
 ValidityScales EnskogClosure::validity_scales() const {
-  return {physics_.K, area_fraction_, true, enskog::kFreezingAreaFraction};
+  // Collisions carry chi wherever phi0 is known (always for the Enskog closure itself).
+  return {physics_.K, area_fraction_, area_fraction_ > 0.0, enskog::kFreezingAreaFraction};
 }
 
 std::string EnskogClosure::validity_problem(const std::vector<double>& n) const {
+  return freezing_problem(area_fraction_, n, name());
+}
+
+std::string freezing_problem(double area_fraction, const std::vector<double>& n,
+                             const std::string& closure) {
   size_t densest = 0;
   for (size_t i = 1; i < n.size(); ++i) {
     if (n[i] > n[densest]) densest = i;
   }
-  if (n.empty() || area_fraction_ * n[densest] < enskog::kFreezingAreaFraction) return {};
-  return "the area fraction phi0 n = " + format(area_fraction_ * n[densest]) + " in cell " +
+  if (n.empty() || area_fraction * n[densest] < enskog::kFreezingAreaFraction) return {};
+  return "the area fraction phi0 n = " + format(area_fraction * n[densest]) + " in cell " +
          std::to_string(densest) + " reached the freezing fraction " +
-         format(enskog::kFreezingAreaFraction) +
-         " of hard disks, past which the enskog closure does not apply";
+         format(enskog::kFreezingAreaFraction) + " of hard disks, past which the " + closure +
+         " closure does not apply";
 }
 
 }  // namespace granvv::hydro

@@ -128,7 +128,8 @@ std::vector<KeySpec> rows_without_declared() {
       {"physics.q", kReal, kRequired, open_closed(0, 0.5), "inelasticity q = (1 - r)/2"},
       {"physics.area_fraction", kReal, 0.0, closed_open(0, 1),
        "mean area fraction phi0 of the dense-gas closure (phi = phi0 n; 0 = not given; "
-       "hydro.closure = \"enskog\" needs it, a comparison takes md.area_fraction)"},
+       "hydro.closure = \"enskog\" needs it, \"garzo_dufty\" is dense with it, a comparison "
+       "takes md.area_fraction)"},
       {"physics.cooling", kString, "small_q", one_of(hydro::cooling_rate_names()),
        "inelastic loss of the cooling term: \"small_q\" = the paper's 8q/K (1 - r^2 ~ 4q), "
        "\"exact\" = times (1 - q) (1 - r^2 = 4q(1 - q))"},
@@ -167,13 +168,17 @@ std::vector<KeySpec> rows_without_declared() {
        "write the time series every N steps"},
       {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
        "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
-       "disks (docs/physics.md §9)"},
+       "disks, \"garzo_dufty\" = inelastic hard disks' transport, dense with "
+       "physics.area_fraction (docs/physics.md §9)"},
       {"hydro.viscosity_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's viscosities: an injected model error 1 + eps for the atlas's "
        "comparison power (docs/atlas.md); 1 = the closure as written"},
       {"hydro.conductivity_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's heat conductivity (an injected model error, as "
        "hydro.viscosity_factor)"},
+      {"hydro.mu_factor", kReal, 1.0, open_closed(0, 100),
+       "multiplies the closure's heat-flux coefficient mu of q = -kappa dT/dx - mu dn/dx (an "
+       "injected model error, as hydro.viscosity_factor; no effect where mu = 0)"},
       {"hydro.cooling_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's cooling sink, and so Haff's 1/t0 (an injected model error, as "
        "hydro.viscosity_factor)"},

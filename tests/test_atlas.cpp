@@ -173,11 +173,15 @@ TEST(AtlasCli, HaffSceneRecommendsTheHaffOde) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = read_json(dir / "atlas.json");
   EXPECT_EQ(a["recommendation"]["model"], "haff_ode");
-  // The homogeneous cooling state is judged on its thermal energy; the Haff ODE is exact, and the
-  // hydro's cooling step is exact too, so both agree with the reference to round-off (1e-12).
+  // The homogeneous cooling state is judged on its thermal energy. The reference is the richest
+  // hydro that ran, the garzo_dufty closure, whose cooling carries the Sonine factor 1 + 3 a2/16
+  // (a2 = -0.0089 at r = 0.98: -0.17 %, so T late in Haff's law, ~ rate^-2, is 0.33 % higher):
+  // the exact Haff ODE of the paper's cooling is 0.33 % off it. Every hydro rung above the ODE
+  // is adequate; the cheapest run of either is the next rung.
   EXPECT_EQ(a["observables"], json::array({"thermal_energy"}));
-  EXPECT_LT(a["recommendation"]["error"]["thermal_energy"].get<double>(), 1e-12);
-  EXPECT_EQ(a["recommendation"]["next_rung"]["model"], "hydro/dilute");
+  EXPECT_LT(a["recommendation"]["error"]["thermal_energy"].get<double>(), 1e-2);
+  EXPECT_GT(a["recommendation"]["error"]["thermal_energy"].get<double>(), 1e-3);
+  EXPECT_EQ(a["recommendation"]["next_rung"]["model"].get<std::string>().rfind("hydro/", 0), 0u);
   EXPECT_TRUE(fs::is_regular_file(dir / "atlas.h5"));
   // A second atlas of the same scene takes every run from the cache.
   const auto again = run_cli("atlas haff --quiet --no-report --out " + shell_quote(dir.string()) +
@@ -207,8 +211,11 @@ TEST(AtlasCli, SingleModeLadderAndItsPage) {
     EXPECT_FALSE(run["model_error"].contains("field_T"));
   }
   EXPECT_TRUE(inertia_ran);
-  ASSERT_EQ(a["stability"].size(), 1u);
+  // The stability maps of the two hydro families that run without physics.area_fraction
+  // (dilute, garzo_dufty).
+  ASSERT_EQ(a["stability"].size(), 2u);
   EXPECT_EQ(a["stability"][0]["boundaries"].size(), 2u);
+  EXPECT_EQ(a["stability"][1]["boundaries"].size(), 2u);
   // The hydro's timeline carries its validity monitors (none reaches its threshold in this
   // dilute, small-K scene; a crossing would lie within the run, t <= 3.225).
   bool hydro_row = false;

@@ -23,15 +23,15 @@ const std::vector<double> kN{0.5, 1.0, 2.5, 4.0}, kT{1.0, 0.3, 2.0, 0.01};
 
 ClosureParameters parameters(const std::string& name, const TransportFactors& f) {
   ClosureParameters p{kPhysics, {}, CoolingRate::small_q, f};
-  if (name == "enskog") p.extra["area_fraction"] = 0.1;
+  if (name != "dilute") p.extra["area_fraction"] = 0.1;
   return p;
 }
 
 TEST(ScaledClosure, EachFactorMultipliesItsCoefficientOnly) {
-  for (const std::string name : {"dilute", "enskog"}) {
+  for (const std::string name : {"dilute", "enskog", "garzo_dufty"}) {
     SCOPED_TRACE(name);
     const auto plain = make_closure(name, parameters(name, {}));
-    const auto scaled = make_closure(name, parameters(name, {2.0, 3.0, 0.5}));
+    const auto scaled = make_closure(name, parameters(name, {2.0, 3.0, 0.5, 4.0}));
     EXPECT_EQ(scaled->name(), name);
     CellCoefficients a, b;
     plain->cell_coefficients(kN, kT, a);
@@ -50,16 +50,18 @@ TEST(ScaledClosure, EachFactorMultipliesItsCoefficientOnly) {
       EXPECT_DOUBLE_EQ(b.viscosity[i], 2.0 * a.viscosity[i]);
       EXPECT_DOUBLE_EQ(b.shear_viscosity[i], 2.0 * a.shear_viscosity[i]);
       EXPECT_DOUBLE_EQ(b.conductivity[i], 3.0 * a.conductivity[i]);
+      EXPECT_DOUBLE_EQ(b.mu[i], 4.0 * a.mu[i]);  // 0 = 0 where the closure has no mu
       EXPECT_DOUBLE_EQ(rb[i], 0.5 * ra[i]);
       EXPECT_EQ(Tb[i], Ta[i]) << "cooling for dt at rate f Lambda is cooling for f dt";
     }
     EXPECT_DOUBLE_EQ(scaled->hcs_linearisation().haff_time,
                      2.0 * plain->hcs_linearisation().haff_time);
+    EXPECT_DOUBLE_EQ(scaled->hcs_linearisation().mu, 4.0 * plain->hcs_linearisation().mu);
   }
 }
 
 TEST(ScaledClosure, UnitFactorsAreNotWrappedAndGenericCutoffsAreEachClosuresOwn) {
-  for (const std::string name : {"dilute", "enskog"}) {
+  for (const std::string name : {"dilute", "enskog", "garzo_dufty"}) {
     SCOPED_TRACE(name);
     EXPECT_EQ(dynamic_cast<const ScaledClosure*>(make_closure(name, parameters(name, {})).get()),
               nullptr);
