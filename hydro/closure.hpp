@@ -109,12 +109,16 @@ class Closure {
 
 // What a closure is built from: the paper's K and q, closure-specific named parameters (the
 // Enskog closure's "area_fraction"), and the inelastic loss of the cooling term, which every
-// closure applies; and injected model errors (identity: none), which every closure takes.
+// closure applies; and injected model errors (identity: none), which every closure takes. A
+// closure's own text and table keys (the formula closure's formulas and constants) come in
+// `texts` and `tables`, by name as in `extra`.
 struct ClosureParameters {
   Physics physics;
   std::map<std::string, double> extra;
   CoolingRate cooling = CoolingRate::small_q;
   TransportFactors factors{};
+  std::map<std::string, std::string> texts{};
+  std::map<std::string, NamedReals> tables{};
 };
 
 // A closure parameter outside what the closure can use: its name in `extra` and why.
@@ -125,7 +129,8 @@ struct ClosureParameterProblem {
 
 // A key a closure declares as its own (hydro/closure_registry.cpp): the case key
 // hydro.<spec.name>, which reaches the closure as ClosureParameters::extra[spec.name] (a real;
-// an integer or a switch as one, true = 1). The case schema derives these keys, and a case
+// an integer or a switch as one, true = 1), texts[spec.name] (a text) or tables[spec.name] (a
+// table of named reals). The case schema derives these keys, and a case
 // that runs only other closures may not set them. Keys every closure reads (physics.K, q,
 // cooling, area_fraction, the hydro.*_factor errors) are the schema's own.
 struct ClosureKey {

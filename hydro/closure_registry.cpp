@@ -6,6 +6,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/enskog_closure.hpp"
+#include "hydro/formula_closure.hpp"
 #include "hydro/scaled_closure.hpp"
 
 namespace granvv::hydro {
@@ -15,9 +16,9 @@ struct RegisteredClosure {
   std::function<std::unique_ptr<Closure>(const ClosureParameters&)> make;
   // Empty: the closure reads no parameter beyond K, q and the cooling rate.
   std::function<std::optional<ClosureParameterProblem>(const ClosureParameters&)> problem;
-  // Its own case keys hydro.<name> (closure.hpp, ClosureKey). Neither closure has one today:
-  // both read physics.area_fraction (the Enskog closure for chi(phi), the dilute one for its
-  // area-fraction validity monitor), so that key is the schema's.
+  // Its own case keys hydro.<name> (closure.hpp, ClosureKey): the formula closure's formulas.
+  // physics.area_fraction is read by several (the Enskog closure for chi(phi), the dilute one
+  // for its area-fraction validity monitor, the formulas as phi0), so that key is the schema's.
   std::vector<ParameterSpec> keys;
 };
 
@@ -32,6 +33,8 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
         {},
         {}}},
       {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}}},
+      {"formula",
+       {&FormulaClosure::make, &FormulaClosure::parameter_problem, FormulaClosure::keys()}},
   };
   return registry;
 }
