@@ -147,6 +147,9 @@ const std::vector<ClosureKey>& closure_keys();
 // std::invalid_argument for an unknown name, listing the known ones.
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
 std::vector<std::string> closure_names();
+// Whether the atlas's ladder runs closure `name` in a case that does not choose it (as
+// hydro.closure): not the formula closure, whose defaults are the dilute closure's formulas.
+bool closure_on_every_ladder(const std::string& name);
 // The first parameter of `params` that closure `name` cannot use (none: nullopt). Throws like
 // make_closure for an unknown name.
 std::optional<ClosureParameterProblem> closure_parameter_problem(const std::string& name,

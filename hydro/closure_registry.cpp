@@ -20,6 +20,7 @@ struct RegisteredClosure {
   // physics.area_fraction is read by several (the Enskog closure for chi(phi), the dilute one
   // for its area-fraction validity monitor, the formulas as phi0), so that key is the schema's.
   std::vector<ParameterSpec> keys;
+  bool on_every_ladder = true;  // closure.hpp, closure_on_every_ladder
 };
 
 const std::map<std::string, RegisteredClosure>& closure_registry() {
@@ -34,7 +35,7 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
         {}}},
       {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}}},
       {"formula",
-       {&FormulaClosure::make, &FormulaClosure::parameter_problem, FormulaClosure::keys()}},
+       {&FormulaClosure::make, &FormulaClosure::parameter_problem, FormulaClosure::keys(), false}},
   };
   return registry;
 }
@@ -81,6 +82,10 @@ const std::vector<ClosureKey>& closure_keys() {
     return out;
   }();
   return keys;
+}
+
+bool closure_on_every_ladder(const std::string& name) {
+  return find_closure(name).on_every_ladder;
 }
 
 std::vector<std::string> closure_names() {

@@ -23,23 +23,22 @@ struct QuantitySpec {
 };
 constexpr QuantitySpec kQuantities[] = {
     {"pressure", "n*T", true, "pressure p(n, T)"},
-    {"viscosity", "K/4*sqrt(T)", true, "longitudinal viscosity eta(n, T): stress eta dv/dx"},
-    {"shear_viscosity", "K/4*sqrt(T)", true, "shear viscosity eta_xy(n, T): stress eta_xy dv_y/dx"},
+    {"viscosity", "K/4*sqrt(T)", true, "longitudinal viscosity eta(n, T), stress eta dv/dx"},
+    {"shear_viscosity", "K/4*sqrt(T)", true, "shear viscosity eta_xy(n, T), stress eta_xy dv_y/dx"},
     {"conductivity", "K*sqrt(T)", true, "heat conductivity kappa(n, T)"},
     // Either sign: the term -mu dn/dx moves heat down (mu > 0, inelastic kinetic theory) or up
     // the density gradient, and leaves the heat equation's diffusion in T to kappa > 0.
     {"mu", "0", false,
-     "inelastic heat-flux coefficient mu(n, T): heat flux -kappa dT/dx - mu dn/dx "
-     "(any sign; must be 0 until the operator's heat flux has the mu term)"},
+     "mu(n, T) of the heat flux -kappa dT/dx - mu dn/dx (any sign; 0 until the operator has "
+     "the mu term)"},
     {"cooling_rate", "8*q/K*n*T^(3/2)", true,
-     "cooling sink Lambda(n, T): dT/dt = -Lambda (physics.cooling = \"exact\": times 1 - q)"},
+     "cooling sink Lambda(n, T), dT/dt = -Lambda (physics.cooling = \"exact\": times 1 - q)"},
 };
 constexpr size_t kQuantityCount = std::size(kQuantities);
 constexpr const char* kConstantsKey = "constants";
 constexpr const char* kDensityLimitKey = "density_limit";
 constexpr double kDefaultDensityLimit = 1e6;
-constexpr const char* kFormulaHelp =
-    "formula: a muparser expression of n, T, K, q, r = 1 - 2q, phi0 and hydro.constants; ";
+constexpr const char* kFormulaHelp = "formula: ";
 
 // Relative step of the numerical derivatives (hydro/central_difference.hpp).
 constexpr double kRelativeStep = 1e-3;
@@ -202,14 +201,14 @@ std::vector<ParameterSpec> FormulaClosure::keys() {
   std::vector<ParameterSpec> keys;
   for (const QuantitySpec& q : kQuantities) {
     keys.push_back({q.name, std::string(q.dilute), ParameterRange::any(),
-                    std::string(kFormulaHelp) + q.help + " (default: the dilute closure's)"});
+                    std::string(kFormulaHelp) + q.help +
+                        ", an expression of n, T, K, q, r, phi0 and hydro.constants"});
   }
   keys.push_back({kConstantsKey, NamedReals{}, ParameterRange::any(),
                   "formula: named constants of the formulas, e.g. { a = 2.5 }"});
   keys.push_back({kDensityLimitKey, kDefaultDensityLimit, ParameterRange::greater_than(1.0),
-                  "formula: the densest n the formulas hold at: they are checked for n from " +
-                      number(kLowestCheckedDensity) +
-                      " up to it, and a run stops where a cell passes it"});
+                  "formula: the densest n the formulas hold at (checked from n = " +
+                      number(kLowestCheckedDensity) + "; a run stops where a cell passes it)"});
   return keys;
 }
 
