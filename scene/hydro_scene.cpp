@@ -103,7 +103,7 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
   s.cooling = hydro::cooling_rate_from_name(c.string("physics.cooling"));
   s.area_fraction = c.real("physics.area_fraction");
   s.factors = {c.real("hydro.viscosity_factor"), c.real("hydro.conductivity_factor"),
-               c.real("hydro.cooling_factor")};
+               c.real("hydro.cooling_factor"), c.real("hydro.mu_factor")};
   if (c.boolean("md.enabled") && c.boolean("compare.enabled")) {
     const double scene = c.real("md.area_fraction");
     if (s.area_fraction != 0.0 && s.area_fraction != scene) {  // 0: not given
