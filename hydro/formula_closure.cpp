@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "fields/constants.hpp"
 #include "hydro/central_difference.hpp"
+#include "hydro/hcs_cutoffs.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -28,9 +28,7 @@ constexpr QuantitySpec kQuantities[] = {
     {"conductivity", "K*sqrt(T)", true, "heat conductivity kappa(n, T)"},
     // Either sign: the term -mu dn/dx moves heat down (mu > 0, inelastic kinetic theory) or up
     // the density gradient, and leaves the heat equation's diffusion in T to kappa > 0.
-    {"mu", "0", false,
-     "mu(n, T) of the heat flux -kappa dT/dx - mu dn/dx (any sign; 0 until the operator has "
-     "the mu term)"},
+    {"mu", "0", false, "mu(n, T) of the heat flux -kappa dT/dx - mu dn/dx (any sign)"},
     {"cooling_rate", "8*q/K*n*T^(3/2)", true,
      "cooling sink Lambda(n, T), dT/dt = -Lambda (physics.cooling = \"exact\": times 1 - q)"},
 };
@@ -167,27 +165,11 @@ std::optional<ClosureParameterProblem> grid_problem(const std::vector<Formula>& 
   return std::nullopt;
 }
 
-// mu until the operator's heat flux has the -mu dn/dx term: 0 everywhere on the grid.
-std::optional<ClosureParameterProblem> mu_problem(const Formula& mu, double density_limit) {
-  for (const double n : log_grid(kLowestCheckedDensity, density_limit)) {
-    for (const double T : log_grid(kCheckedTemperatures[0], kCheckedTemperatures[1])) {
-      if (mu(n, T) != 0.0) {
-        return ClosureParameterProblem{kQuantities[kMu].name,
-                                       "is " + number(mu(n, T)) + " at n = " + number(n) +
-                                           ", T = " + number(T) +
-                                           " (allowed: 0; this build's heat flux has no mu term)"};
-      }
-    }
-  }
-  return std::nullopt;
-}
-
 std::optional<ClosureParameterProblem> problem_of(const ClosureParameters& p,
                                                   std::vector<Formula>* compiled) {
   try {
     std::vector<Formula> formulas = compile(p);
-    auto problem = grid_problem(formulas, density_limit_of(p));
-    if (!problem) problem = mu_problem(formulas[kMu], density_limit_of(p));
+    const auto problem = grid_problem(formulas, density_limit_of(p));
     if (compiled) *compiled = std::move(formulas);
     return problem;
   } catch (const ClosureParameterProblem& problem) {
@@ -251,6 +233,7 @@ void FormulaClosure::cell_coefficients(const std::vector<double>& n, const std::
     out.viscosity[i] = formulas_[kViscosity](ni, Ti);
     out.shear_viscosity[i] = formulas_[kShearViscosity](ni, Ti);
     out.conductivity[i] = formulas_[kConductivity](ni, Ti);
+    out.mu[i] = formulas_[kMu](ni, Ti);
   }
 }
 
@@ -334,13 +317,8 @@ HcsLinearisation FormulaClosure::hcs_linearisation() const {
   lin.cooling_density = central_derivative([&](double n) { return rate(n, 1.0); }, 1.0, h);
   lin.cooling_temperature =
       central_derivative([&](double T) { return rate(1.0, T); }, 1.0, h) - Lambda;
-  // The general criteria of hydro/closure.hpp: clustering while
-  // p_n (kappa kx^2 + Lambda_T') < p_T Lambda_n, shear while eta_xy kx^2 < eps, k = kx / (2 pi).
-  const double clustering = (lin.pressure_temperature * lin.cooling_density / lin.pressure_density -
-                             lin.cooling_temperature) /
-                            lin.conductivity;
-  lin.clustering_cutoff_mode = clustering > 0 ? std::sqrt(clustering) / kTwoPi : 0.0;
-  lin.shear_cutoff_mode = std::sqrt(lin.epsilon / lin.shear_viscosity) / kTwoPi;
+  lin.mu = formulas_[kMu](1.0, 1.0);
+  set_cutoff_modes(lin);
   return lin;
 }
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fields/constants.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/formula_closure.hpp"
@@ -72,6 +73,22 @@ TEST(FormulaClosure, DefaultsAreTheDiluteClosure) {
     }
     EXPECT_EQ(formula.name(), "formula");
   }
+}
+
+TEST(FormulaClosure, SuppliesMuToTheCellsAndTheLinearTheory) {
+  // mu = 0.3 K T^{3/2} / n: the cells' column and the linearisation's value at n = T = 1, and
+  // the clustering cutoff with the conduction kappa - mu p_T/p_n a pressure-balanced mode sees
+  // (dilute otherwise: p_n = p_T = 1, Lambda_n = 2 eps, Lambda_T' = eps, so kx^2 = eps / (K -
+  // 0.3 K)).
+  const FormulaClosure closure(formulas({{"mu", "0.3*K*T^(3/2)/n"}}));
+  CellCoefficients cell;
+  closure.cell_coefficients({2.0, 0.5}, {4.0, 0.25}, cell);
+  EXPECT_DOUBLE_EQ(cell.mu[0], 0.3 * 4e-4 * 8.0 / 2.0);
+  EXPECT_DOUBLE_EQ(cell.mu[1], 0.3 * 4e-4 * 0.125 / 0.5);
+  const HcsLinearisation h = closure.hcs_linearisation();
+  EXPECT_DOUBLE_EQ(h.mu, 0.3 * 4e-4);
+  const double kx = std::sqrt(h.epsilon / (0.7 * 4e-4));
+  EXPECT_NEAR(h.clustering_cutoff_mode / (kx / kTwoPi), 1.0, 1e-11);
 }
 
 TEST(FormulaClosure, CoolingStepFollowsASinkWithoutHaffScaling) {
