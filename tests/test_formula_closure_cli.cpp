@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,24 @@ TEST(FormulaClosureCli, DiluteFormulasReproduceTheDiluteRuns) {
   fs::remove_all(dir);
 }
 
+// A mu of the user's reaches the run and its linear theory: with mu = 0.3 K T^{3/2} / n the
+// clustering mode of single_mode sees the conduction kappa - mu p_T/p_n = 0.7 K, so its cutoff
+// is the dilute one over sqrt(0.7) (hydro/hcs_cutoffs.hpp).
+TEST(FormulaClosureCli, MuOfTheUsersMovesTheClusteringCutoff) {
+  const fs::path dir = fresh_directory("formula-closure-mu");
+  const std::string scene =
+      "run single_mode --set hydro.t_end=0.1 --set 'hydro.output_times=[]'"
+      " --set 'convergence.cells=[]'";
+  run(dir, "dilute", scene);
+  run(dir, "mu", scene + " --set hydro.closure=formula --set 'hydro.mu=0.3*K*T^(3/2)/n'");
+  const auto cutoff = [&](const char* label) {
+    const auto s = nlohmann::json::parse(read_text(dir / label / "summary.json"));
+    return s["hydro"]["clustering_cutoff_mode"].get<double>();
+  };
+  EXPECT_NEAR(cutoff("mu") * std::sqrt(0.7) / cutoff("dilute"), 1.0, 1e-11);
+  fs::remove_all(dir);
+}
+
 TEST(FormulaClosureCli, BadFormulaOrForeignKeyExitsTwoWithOneLineNamingTheKey) {
   const fs::path dir = fresh_directory("formula-closure-bad");
   struct Bad {
@@ -132,6 +151,14 @@ TEST(FormulaClosureCli, BadFormulaOrForeignKeyExitsTwoWithOneLineNamingTheKey) {
     }
     EXPECT_FALSE(fs::exists(dir / "out"));
   }
+  // A formula closure among the compared ones is checked like hydro.closure.
+  const CliStreams r = run_cli_streams(
+      "run quickstart --dry-run --set 'compare.closures=[\"dilute\", \"formula\"]' "
+      "--set 'hydro.pressure=n*T - 1'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("hydro.pressure = \"n*T - 1\": closure \"formula\" of compare.closures"),
+            std::string::npos)
+      << r.err;
   fs::remove_all(dir);
 }
 
