@@ -117,12 +117,16 @@ class Closure {
 
 // What a closure is built from: the paper's K and q, closure-specific named parameters (the
 // Enskog closure's "area_fraction"), and the inelastic loss of the cooling term, which every
-// closure applies; and injected model errors (identity: none), which every closure takes.
+// closure applies; and injected model errors (identity: none), which every closure takes. A
+// closure's own text and table keys (the formula closure's formulas and constants) come in
+// `texts` and `tables`, by name as in `extra`.
 struct ClosureParameters {
   Physics physics;
   std::map<std::string, double> extra;
   CoolingRate cooling = CoolingRate::small_q;
   TransportFactors factors{};
+  std::map<std::string, std::string> texts{};
+  std::map<std::string, NamedReals> tables{};
 };
 
 // A closure parameter outside what the closure can use: its name in `extra` and why.
@@ -133,7 +137,8 @@ struct ClosureParameterProblem {
 
 // A key a closure declares as its own (hydro/closure_registry.cpp): the case key
 // hydro.<spec.name>, which reaches the closure as ClosureParameters::extra[spec.name] (a real;
-// an integer or a switch as one, true = 1). The case schema derives these keys, and a case
+// an integer or a switch as one, true = 1), texts[spec.name] (a text) or tables[spec.name] (a
+// table of named reals). The case schema derives these keys, and a case
 // that runs only other closures may not set them. Keys every closure reads (physics.K, q,
 // cooling, area_fraction, the hydro.*_factor errors) are the schema's own.
 struct ClosureKey {
@@ -150,6 +155,9 @@ const std::vector<ClosureKey>& closure_keys();
 // std::invalid_argument for an unknown name, listing the known ones.
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
 std::vector<std::string> closure_names();
+// Whether the atlas's ladder runs closure `name` in a case that does not choose it (as
+// hydro.closure): not the formula closure, whose defaults are the dilute closure's formulas.
+bool closure_on_every_ladder(const std::string& name);
 // Whether closure `name` has the inelastic heat flux -mu dn/dx (mu != 0 for r < 1); throws like
 // make_closure for an unknown name.
 bool closure_has_density_heat_flux(const std::string& name);

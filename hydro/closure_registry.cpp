@@ -6,6 +6,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/dilute_closure.hpp"
 #include "hydro/enskog_closure.hpp"
+#include "hydro/formula_closure.hpp"
 #include "hydro/garzo_dufty_closure.hpp"
 #include "hydro/scaled_closure.hpp"
 
@@ -16,13 +17,15 @@ struct RegisteredClosure {
   std::function<std::unique_ptr<Closure>(const ClosureParameters&)> make;
   // Empty: the closure reads no parameter beyond K, q and the cooling rate.
   std::function<std::optional<ClosureParameterProblem>(const ClosureParameters&)> problem;
-  // Its own case keys hydro.<name> (closure.hpp, ClosureKey). No closure has one today: all
-  // read physics.area_fraction (the Enskog and Garzo-Dufty closures for chi(phi), the dilute
-  // one for its area-fraction validity monitor), so that key is the schema's.
+  // Its own case keys hydro.<name> (closure.hpp, ClosureKey): the formula closure's formulas.
+  // physics.area_fraction is read by several (the Enskog and Garzo-Dufty closures for chi(phi),
+  // the dilute one for its area-fraction validity monitor, the formulas as phi0), so that key
+  // is the schema's.
   std::vector<ParameterSpec> keys;
   // Whether it has a heat flux down the density gradient (mu != 0 for r < 1), so that an
   // injected error in mu (hydro.mu_factor) can change its runs.
   bool density_heat_flux = false;
+  bool on_every_ladder = true;  // closure.hpp, closure_on_every_ladder
 };
 
 const std::map<std::string, RegisteredClosure>& closure_registry() {
@@ -38,6 +41,10 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
         false}},
       {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}, false}},
       {"garzo_dufty", {&GarzoDuftyClosure::make, &GarzoDuftyClosure::parameter_problem, {}, true}},
+      // The user's mu may be nonzero; the closure is on the ladder only where chosen.
+      {"formula",
+       {&FormulaClosure::make, &FormulaClosure::parameter_problem, FormulaClosure::keys(), true,
+        false}},
   };
   return registry;
 }
@@ -88,6 +95,10 @@ const std::vector<ClosureKey>& closure_keys() {
     return out;
   }();
   return keys;
+}
+
+bool closure_on_every_ladder(const std::string& name) {
+  return find_closure(name).on_every_ladder;
 }
 
 std::vector<std::string> closure_names() {

@@ -2,23 +2,33 @@
 
 #include <muParser.h>
 
+#include <algorithm>
+
 #include "fields/constants.hpp"
 
 namespace granvv::hydro {
 
 struct Formula::Compiled {
   std::string text;
-  double x = 0.0;  // the parser reads x from here
+  std::vector<double> values;  // the parser reads the variables from here (sized once)
   mu::Parser parser;
 };
 
 Formula::Formula(const std::string& text, const NamedReals& constants)
+    : Formula(text, constants, {"x"}) {}
+
+Formula::Formula(const std::string& text, const NamedReals& constants,
+                 const std::vector<std::string>& variables)
     : compiled_(std::make_shared<Compiled>()) {
   Compiled& c = *compiled_;
   c.text = text;
+  c.values.assign(variables.size(), 0.0);
+  std::string reserved;
+  for (const auto& variable : variables) reserved += variable + ", ";
   for (const auto& [name, value] : constants) {
-    if (name == "x" || name == "pi") {
-      FormulaError e("constant '" + name + "' is reserved (x is the position, pi is built in)");
+    if (name == "pi" || std::find(variables.begin(), variables.end(), name) != variables.end()) {
+      FormulaError e("constant '" + name + "' is reserved (" + reserved +
+                     "pi: the formula's variables and pi are built in)");
       e.constant = true;
       throw e;
     }
@@ -32,7 +42,7 @@ Formula::Formula(const std::string& text, const NamedReals& constants)
     }
   }
   try {
-    c.parser.DefineVar("x", &c.x);
+    for (size_t i = 0; i < variables.size(); ++i) c.parser.DefineVar(variables[i], &c.values[i]);
     c.parser.DefineConst("pi", kPi);
     c.parser.SetExpr(text);
     (void)c.parser.Eval();  // muparser parses on the first evaluation
@@ -46,7 +56,13 @@ Formula::Formula(const std::string& text, const NamedReals& constants)
 }
 
 double Formula::operator()(double x) const {
-  compiled_->x = x;
+  compiled_->values[0] = x;
+  return compiled_->parser.Eval();
+}
+
+double Formula::operator()(double a, double b) const {
+  compiled_->values[0] = a;
+  compiled_->values[1] = b;
   return compiled_->parser.Eval();
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "hydro/central_difference.hpp"
 #include "hydro/formula.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/profile_table.hpp"
@@ -76,7 +77,7 @@ Formula formula(const ParameterSet& p, const char* name) {
 std::function<double(double)> derivative(const Formula& f) {
   return [f](double x) {
     constexpr double h = 1e-4;
-    return (8.0 * (f(x + h) - f(x - h)) - (f(x + 2.0 * h) - f(x - 2.0 * h))) / (12.0 * h);
+    return central_derivative(f, x, h);
   };
 }
 

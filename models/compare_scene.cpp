@@ -124,9 +124,16 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
   // Each closure models the particle scene: its phi0 is md.area_fraction (scene/hydro_scene.cpp).
   hydro::ClosureParameters params;
   params.physics = {c.real("physics.K"), c.real("physics.q")};
-  params.extra = {{"area_fraction", c.real("md.area_fraction")}};
+  read_closure_keys(c, params);
+  params.extra["area_fraction"] = c.real("md.area_fraction");
   for (const auto& name : s.closures) {
-    if (const auto problem = hydro::closure_parameter_problem(name, params)) {
+    const auto problem = hydro::closure_parameter_problem(name, params);
+    const std::string key = problem ? closure_problem_key(name, *problem) : "";
+    if (problem && key != "physics.area_fraction") {  // the closure's own key
+      throw ConfigError(c.origin(key) + ": " + key + " = " + format_value(c.value(key)) +
+                        ": closure \"" + name + "\" of compare.closures: " + problem->reason);
+    }
+    if (problem) {
       throw ConfigError(c.origin("compare.closures") + ": compare.closures = " + listed +
                         ": closure \"" + name + "\" cannot model the particles at " +
                         "md.area_fraction = " + format_value(c.value("md.area_fraction")) + " (" +

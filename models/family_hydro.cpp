@@ -56,6 +56,9 @@ class HydroFamily : public ModelFamily {
   }
 
   std::optional<std::string> not_applicable(const AtlasScene& scene) const override {
+    if (!hydro::closure_on_every_ladder(closure_) && !is_case_model(scene)) {
+      return "runs only in a case that chooses it (hydro.closure = " + toml_quoted(closure_) + ")";
+    }
     HydroScene own = *scene.case_hydro;
     own.closure = closure_;
     const auto problem = hydro::closure_parameter_problem(closure_, closure_parameters(own));

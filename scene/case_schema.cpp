@@ -169,7 +169,8 @@ std::vector<KeySpec> rows_without_declared() {
       {"hydro.closure", kString, "dilute", one_of(hydro::closure_names()),
        "constitutive closure: \"dilute\" = the paper's Eqs. (1)-(2), \"enskog\" = dense hard "
        "disks, \"garzo_dufty\" = inelastic hard disks' transport, dense with "
-       "physics.area_fraction (docs/physics.md §9)"},
+       "physics.area_fraction, \"formula\" = the user's formulas hydro.pressure ... "
+       "(docs/physics.md §9)"},
       {"hydro.viscosity_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's viscosities: an injected model error 1 + eps for the atlas's "
        "comparison power (docs/atlas.md); 1 = the closure as written"},

@@ -116,16 +116,9 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
     }
     s.area_fraction = scene;
   }
-  for (const auto& key : hydro::closure_keys()) {
-    const KeySpec& spec = *find_key_spec(key.key());
-    const Value& value = c.value(key.key());
-    s.closure_settings[key.spec.name] =
-        spec.type == ValueType::integer   ? double(std::get<long long>(value))
-        : spec.type == ValueType::boolean ? double(std::get<bool>(value))
-                                          : std::get<double>(value);
-  }
+  read_closure_keys(c, s.closure_settings);
   if (const auto problem = hydro::closure_parameter_problem(s.closure, closure_parameters(s))) {
-    const std::string key = "physics." + problem->parameter;
+    const std::string key = closure_problem_key(s.closure, *problem);
     const std::string origin = c.origin(key);
     throw ConfigError((origin == "default" ? c.source() : origin) + ": " + key + " = " +
                       format_value(c.value(key)) + ": hydro.closure = \"" + s.closure +
@@ -136,9 +129,42 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
 }  // namespace
 
 hydro::ClosureParameters closure_parameters(const HydroScene& scene) {
-  std::map<std::string, double> extra = scene.closure_settings;
-  extra["area_fraction"] = scene.area_fraction;
-  return {scene.physics, extra, scene.cooling, scene.factors};
+  hydro::ClosureParameters params = scene.closure_settings;
+  params.physics = scene.physics;
+  params.extra["area_fraction"] = scene.area_fraction;
+  params.cooling = scene.cooling;
+  params.factors = scene.factors;
+  return params;
+}
+
+void read_closure_keys(const CaseConfig& c, hydro::ClosureParameters& params) {
+  for (const auto& key : hydro::closure_keys()) {
+    const Value& value = c.value(key.key());
+    switch (find_key_spec(key.key())->type) {
+      case ValueType::integer:
+        params.extra[key.spec.name] = double(std::get<long long>(value));
+        break;
+      case ValueType::boolean:
+        params.extra[key.spec.name] = double(std::get<bool>(value));
+        break;
+      case ValueType::string:
+        params.texts[key.spec.name] = std::get<std::string>(value);
+        break;
+      case ValueType::real_table:
+        params.tables[key.spec.name] = std::get<RealTable>(value);
+        break;
+      default:
+        params.extra[key.spec.name] = std::get<double>(value);
+    }
+  }
+}
+
+std::string closure_problem_key(const std::string& closure,
+                                const hydro::ClosureParameterProblem& problem) {
+  for (const auto& key : hydro::closure_keys()) {
+    if (key.closure == closure && key.spec.name == problem.parameter) return key.key();
+  }
+  return "physics." + problem.parameter;
 }
 
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene) {

@@ -26,9 +26,9 @@ struct HydroScene {
   // hydro.viscosity_factor, hydro.conductivity_factor, hydro.cooling_factor, hydro.mu_factor:
   // injected model errors (hydro/transport_factors.hpp).
   hydro::TransportFactors factors;
-  // The closures' own keys (hydro/closure.hpp, ClosureKey) by name, every closure's: each
-  // closure reads its own from ClosureParameters::extra.
-  std::map<std::string, double> closure_settings;
+  // The closures' own keys (hydro/closure.hpp, ClosureKey) by name, every closure's, in
+  // extra, texts and tables (physics, cooling and factors unused): each closure reads its own.
+  hydro::ClosureParameters closure_settings;
   hydro::InitialParameters initial;
   // Fields to start from instead of initial.type's generator: in a comparison, the particles'
   // own coarse-grained t = 0 fields (models/compare_scene.hpp).
@@ -49,6 +49,13 @@ struct HydroScene {
 
 // The closure's parameters and the closure itself, from the scene's physics.
 hydro::ClosureParameters closure_parameters(const HydroScene& scene);
+// The closures' own keys of a resolved case, every closure's, into params.extra, texts and
+// tables (hydro/closure.hpp, ClosureKey).
+void read_closure_keys(const CaseConfig& config, hydro::ClosureParameters& params);
+// The case key of a problem closure `closure` has with its parameters: its own hydro.<name>,
+// else physics.<name> (physics.area_fraction).
+std::string closure_problem_key(const std::string& closure,
+                                const hydro::ClosureParameterProblem& problem);
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene);
 
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the

@@ -96,15 +96,26 @@ TEST(DiluteClosure, AdiabatIsTProportionalToN) {
   EXPECT_NEAR(adiabat(dilute, 1.5, 0.4, 3.0), 0.8, 1e-11);
 }
 
-// Three parameter sets; the area fraction (read by "enskog" only) keeps phi0 n below freezing
-// at the densest test point n = 40 (phi up to 0.4; tests/test_enskog_closure.cpp goes to 0.6),
-// and set 1 cools with the exact 1 - r^2.
+// Three parameter sets; the area fraction (read by "enskog" and the formulas) keeps phi0 n below
+// freezing at the densest test point n = 40 (phi up to 0.4; tests/test_enskog_closure.cpp goes
+// to 0.6), and set 1 cools with the exact 1 - r^2. In set 1 the formula closure has dense-gas
+// formulas of Enskog's form and a mu (every other set: its defaults, the dilute closure's).
 ClosureParameters parameter_set(int i) {
   const Physics sets[] = {{4e-4, 0.01}, {0.05, 0.2}, {1e-3, 1e-4}};
   const double area_fractions[] = {0.01, 0.005, 0.002};
-  return {sets[i],
-          {{"area_fraction", area_fractions[i]}},
-          i == 1 ? CoolingRate::exact : CoolingRate::small_q};
+  ClosureParameters p{sets[i],
+                      {{"area_fraction", area_fractions[i]}},
+                      i == 1 ? CoolingRate::exact : CoolingRate::small_q};
+  if (i != 1) return p;
+  const std::string chi = "(1 - 7*phi0*n/16)/(1 - phi0*n)^2";
+  p.texts = {{"pressure", "n*T*(1 + (1 + r)*phi0*n*" + chi + ")"},
+             {"viscosity", "K/4*sqrt(T)*(1 + 2*phi0*n)"},
+             {"shear_viscosity", "K/4*sqrt(T)*(1 + phi0*n)"},
+             {"conductivity", "K*sqrt(T)*(1 + 3*phi0*n)"},
+             {"mu", "0.1*K*T^(3/2)/n"},
+             {"cooling_rate", "8*q/K*n*" + chi + "*T^(3/2)"}};
+  p.extra["density_limit"] = 100.0;  // below the pole of chi at n = 1/phi0 = 200
+  return p;
 }
 
 class EveryClosure : public ::testing::TestWithParam<std::tuple<std::string, int>> {

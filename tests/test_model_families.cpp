@@ -133,6 +133,12 @@ TEST(ModelFamilies, EachFamilySaysWhenItDoesNotApply) {
   EXPECT_FALSE(app::model_family("hydro/enskog").not_applicable(dense));
   EXPECT_TRUE(app::model_family("hydro/enskog").is_case_model(dense));
   EXPECT_FALSE(app::model_family("hydro/dilute").is_case_model(dense));
+  // The formula closure runs only where the case chooses it (its defaults copy the dilute one).
+  const auto formula = app::model_family("hydro/formula").not_applicable(haff);
+  ASSERT_TRUE(formula);
+  EXPECT_NE(formula->find("hydro.closure = \"formula\""), std::string::npos) << *formula;
+  EXPECT_FALSE(app::model_family("hydro/formula")
+                   .not_applicable(scene_of("haff", {"hydro.closure=\"formula\""})));
 }
 
 TEST(ModelFamilies, ParticleGridsFollowTheirKeys) {
