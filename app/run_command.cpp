@@ -20,6 +20,7 @@
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
+#include "app/transport_output.hpp"
 #include "models/compare_scene.hpp"
 #include "models/model.hpp"
 #include "scene/atomic_file.hpp"
@@ -435,6 +436,18 @@ void run_parts(RunContext& c, const std::optional<CompareScene>& compare_scene,
     if (compare_scene->closures.size() > 1) {
       compare_closures(*compare_scene, c.scene, *outcome, compared, *c.md_scene, *md, c.ranks,
                        c.work / "results.h5", c.summary["compare"], c.log);
+    }
+    if (compare_scene->transport) {
+      const TransportMeasurement m = measure_transport(
+          *compare_scene->transport, compare_scene->closures, c.scene, *c.md_scene, *md);
+      write_output(c.ranks, c.work / "results.h5",
+                   [&] { write_transport_results(c.work / "results.h5", m); });
+      c.summary["transport"] = transport_summary(m);
+      c.log.info(
+          "transport: {} = {:.4g} +- {:.4g} of the elastic dilute value (factor {:.4g} "
+          "+- {:.4g} on the {} closure's, chi2 {:.3g} for {} degrees of freedom)",
+          m.coefficient, m.measured, m.error, m.fit.factor, m.fit.error, m.closure, m.fit.chi2,
+          m.fit.degrees_of_freedom);
     }
     c.log.info("compare: {}", compared.verdict);
     c.log.info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
