@@ -93,7 +93,8 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["area_fraction"] = scene.area_fraction;
   h["transport_factors"] = {{"viscosity", scene.factors.viscosity},
                             {"conductivity", scene.factors.conductivity},
-                            {"cooling", scene.factors.cooling}};
+                            {"cooling", scene.factors.cooling},
+                            {"mu", scene.factors.mu}};
 
   std::optional<double> tau;
   if (run.status == hydro::RunStatus::singularity && out.singularity) tau = out.singularity->tau;

@@ -22,10 +22,15 @@ double relative_conductivity(const hydro::Closure& closure, double K, double n, 
   return coefficients_at(closure, n, T).conductivity[0] / scaled_elastic_conductivity(K, T);
 }
 
-// kappa - mu n / T over kappa0; the closures carry no mu yet, so it is kappa's.
+// kappa - mu n / T over kappa0.
 double relative_effective_conductivity(const hydro::Closure& closure, double K, double n,
                                        double T) {
-  return relative_conductivity(closure, K, n, T);
+  const hydro::CellCoefficients c = coefficients_at(closure, n, T);
+  return (c.conductivity[0] - c.mu[0] * n / T) / scaled_elastic_conductivity(K, T);
+}
+
+double relative_mu(const hydro::Closure& closure, double K, double n, double T) {
+  return coefficients_at(closure, n, T).mu[0] / scaled_elastic_mu(K, n, T);
 }
 
 }  // namespace
@@ -63,8 +68,11 @@ ScaledTransportUnits scaled_transport_units(double number_density, double box_le
 const std::vector<TransportCoefficient>& transport_coefficients() {
   static const std::vector<TransportCoefficient> table = {
       {"shear_viscosity", {"hydro.viscosity_factor"}, &relative_shear_viscosity},
-      {"effective_conductivity", {"hydro.conductivity_factor"}, &relative_effective_conductivity},
+      {"effective_conductivity",
+       {"hydro.conductivity_factor", "hydro.mu_factor"},
+       &relative_effective_conductivity},
       {"conductivity", {"hydro.conductivity_factor"}, &relative_conductivity},
+      {"mu", {"hydro.mu_factor"}, &relative_mu},
   };
   return table;
 }

@@ -34,8 +34,7 @@ ScaledTransportUnits scaled_transport_units(double number_density, double box_le
 struct TransportCoefficient {
   std::string name;  // the key in summary.json's transport block
   // The case keys of the factors the hydro is run with, all set to the same F: the coefficient
-  // the closure gives times F (hydro/transport_factors.hpp; hydro.mu_factor with the conductivity
-  // once the closures carry mu).
+  // the closure gives times F (hydro/transport_factors.hpp).
   std::vector<std::string> factor_keys;
   // The closure's value at (n, T) in scaled units over the elastic dilute one there.
   double (*relative_value)(const hydro::Closure& closure, double K, double n, double T);
@@ -43,7 +42,9 @@ struct TransportCoefficient {
 
 // Every coefficient a scene can measure: shear_viscosity (eta_xy), effective_conductivity
 // (kappa - mu n / T, what a pressure-balanced mode sees: at pressure balance dn/dx =
-// -(n/T) dT/dx) and conductivity (kappa alone, where mu is held at the closure's).
+// -(n/T) dT/dx; kappa and mu scaled together), conductivity (kappa alone, mu held at the
+// closure's) and mu (mu alone, kappa held at the closure's; relative to mu0, which is 0 for a
+// closure without mu).
 const std::vector<TransportCoefficient>& transport_coefficients();
 std::vector<std::string> transport_coefficient_names();
 // Throws std::invalid_argument for an unknown name, listing the known ones.

@@ -3,11 +3,16 @@
 // relations that close paper Eqs. (1)-(2) (Efrati, Livne & Meerson, PRL 94, 088001 (2005))
 // for the fields n, v, T in the paper's scaling,
 //   n dv/dt  = d/dx [-p + eta dv/dx],                                  (1b)
-//   n dT/dt  = [-p + eta dv/dx] dv/dx + d/dx(kappa dT/dx) - n Lambda,  (2)
-// with the thermal energy T per particle of the 2D gas. A closure supplies p(n, T), its
-// adiabatic response, the sound speed, the viscosities, the conductivity and the cooling sink
-// Lambda per unit mass; the operator, the time-step control, the cooling step, Haff's law and
-// the linear theory of the homogeneous cooling state take all of these from it.
+//   n dT/dt  = [-p + eta dv/dx] dv/dx - dq/dx - n Lambda,               (2)
+// with the thermal energy T per particle of the 2D gas and the heat flux
+//   q = -kappa dT/dx - mu dn/dx.
+// The second term is the inelastic gas's heat flux down the density gradient (Brey, Dufty, Kim
+// & Santos, PRE 58, 4638 (1998); Garzo & Dufty, PRE 59, 5895 (1999)): mu vanishes for elastic
+// collisions and is O(1 - r) (docs/physics.md §9); the paper's Eq. (2) has mu = 0. A closure
+// supplies p(n, T), its adiabatic response, the sound speed, the viscosities, the conductivity,
+// mu and the cooling sink Lambda per unit mass; the operator, the time-step control, the
+// cooling step, Haff's law and the linear theory of the homogeneous cooling state take all of
+// these from it.
 //
 // Every per-cell quantity is evaluated for a whole mesh in one call (arrays in, arrays out), so
 // choosing a closure at run time costs one virtual call per array, none per cell.
@@ -37,10 +42,11 @@ struct CellCoefficients {
   std::vector<double> viscosity;        // longitudinal eta(n, T): stress eta dv_x/dx
   std::vector<double> shear_viscosity;  // eta_xy(n, T): stress eta_xy dv_y/dx
   std::vector<double> conductivity;     // kappa(n, T): heat flux -kappa dT/dx
+  std::vector<double> mu;               // mu(n, T): heat flux -mu dn/dx
 
   void resize(size_t cells) {
     for (auto* column :
-         {&pressure, &adiabatic_modulus, &viscosity, &shear_viscosity, &conductivity})
+         {&pressure, &adiabatic_modulus, &viscosity, &shear_viscosity, &conductivity, &mu})
       column->resize(cells);
   }
 };
@@ -48,8 +54,8 @@ struct CellCoefficients {
 // Coefficients of the linearised Eqs. (1)-(2) about the homogeneous cooling state n = 1, v = 0,
 // T = T_H(t), in collision-clock units (hydro/linear_stability.hpp, docs/physics.md §2). They
 // assume the hard-disk temperature scaling of every closure here: p ~ T, eta, kappa ~ T^{1/2},
-// Lambda ~ T^{3/2} at fixed n, so that the linearised equations have constant coefficients in
-// the collision clock. Values at n = 1, T = 1:
+// mu ~ T^{3/2}, Lambda ~ T^{3/2} at fixed n, so that the linearised equations have constant
+// coefficients in the collision clock. Values at n = 1, T = 1:
 struct HcsLinearisation {
   double haff_time = 0.0;             // t0 of Haff's law T_H = (1 + t/t0)^-2 (= 2/Lambda)
   double epsilon = 0.0;               // eps = 1/t0 = Lambda/2: cooling rate of T_H^{1/2}
@@ -59,11 +65,13 @@ struct HcsLinearisation {
   double viscosity = 0.0;             // longitudinal eta
   double shear_viscosity = 0.0;       // eta_xy
   double conductivity = 0.0;          // kappa
+  double mu = 0.0;                    // mu: heat flux -mu dn/dx
   double cooling_density = 0.0;       // dLambda/dn at fixed T
   double cooling_temperature = 0.0;   // dLambda/dT - Lambda at fixed n (relative to Haff)
   // Real-valued mode numbers k = kx / (2 pi) below which the clustering mode (det A > 0:
-  // p_n (kappa kx^2 + Lambda_T') < p_T Lambda_n) and the shear mode (eta_xy kx^2 < eps) grow
-  // (hydro/linear_stability.hpp). Each closure computes them from its own formulas.
+  // p_n (kappa kx^2 + Lambda_T') < p_T (Lambda_n + mu kx^2)) and the shear mode
+  // (eta_xy kx^2 < eps) grow (hydro/linear_stability.hpp). Each closure computes them from its
+  // own formulas; with mu the conduction a pressure-balanced mode sees is kappa - mu p_T/p_n.
   double clustering_cutoff_mode = 0.0;
   double shear_cutoff_mode = 0.0;
 };
@@ -142,6 +150,9 @@ const std::vector<ClosureKey>& closure_keys();
 // std::invalid_argument for an unknown name, listing the known ones.
 std::unique_ptr<Closure> make_closure(const std::string& name, const ClosureParameters& params);
 std::vector<std::string> closure_names();
+// Whether closure `name` has the inelastic heat flux -mu dn/dx (mu != 0 for r < 1); throws like
+// make_closure for an unknown name.
+bool closure_has_density_heat_flux(const std::string& name);
 // The first parameter of `params` that closure `name` cannot use (none: nullopt). Throws like
 // make_closure for an unknown name.
 std::optional<ClosureParameterProblem> closure_parameter_problem(const std::string& name,

@@ -19,6 +19,9 @@ struct RegisteredClosure {
   // both read physics.area_fraction (the Enskog closure for chi(phi), the dilute one for its
   // area-fraction validity monitor), so that key is the schema's.
   std::vector<ParameterSpec> keys;
+  // Whether it has a heat flux down the density gradient (mu != 0 for r < 1), so that an
+  // injected error in mu (hydro.mu_factor) can change its runs.
+  bool density_heat_flux = false;
 };
 
 const std::map<std::string, RegisteredClosure>& closure_registry() {
@@ -30,8 +33,9 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
                                                  phi0 == p.extra.end() ? 0.0 : phi0->second);
         },
         {},
-        {}}},
-      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}}},
+        {},
+        false}},
+      {"enskog", {&EnskogClosure::make, &EnskogClosure::parameter_problem, {}, false}},
   };
   return registry;
 }
@@ -59,6 +63,10 @@ std::optional<ClosureParameterProblem> closure_parameter_problem(const std::stri
                                                                  const ClosureParameters& params) {
   const auto& closure = find_closure(name);
   return closure.problem ? closure.problem(params) : std::nullopt;
+}
+
+bool closure_has_density_heat_flux(const std::string& name) {
+  return find_closure(name).density_heat_flux;
 }
 
 const std::vector<ClosureKey>& closure_keys() {

@@ -25,6 +25,7 @@ void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::v
     out.viscosity[i] = eta;
     out.shear_viscosity[i] = eta;
     out.conductivity[i] = conductivity_of_root(sqrt_T);
+    out.mu[i] = 0.0;  // no heat flux down the density gradient (docs/physics.md §9)
   }
 }
 
@@ -61,6 +62,7 @@ HcsLinearisation DiluteClosure::hcs_linearisation() const {
   h.viscosity = viscosity(1.0);
   h.shear_viscosity = viscosity(1.0);
   h.conductivity = conductivity(1.0);
+  h.mu = 0.0;                           // so the cutoffs below need no mu term
   h.cooling_density = 2.0 * h.epsilon;  // Lambda/n = 8q/K
   h.cooling_temperature = h.epsilon;    // (3/2 - 1) Lambda = 4q/K
   // det A = -kx^2 (K kx^2 - eps) and eps - K kx^2/4: pi k K < sqrt(q g), < 2 sqrt(q g).

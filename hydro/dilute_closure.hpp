@@ -1,7 +1,8 @@
 #pragma once
 // The dilute closure of the scaled 2D granular hydrodynamics, paper Eqs. (1)-(2) (Efrati,
 // Livne & Meerson, PRL 94, 088001 (2005); docs/physics.md §1, §9):
-//   p = n T,  eta = eta_xy = (K/4) T^{1/2},  kappa = K T^{1/2},  Lambda = (8q/K) g n T^{3/2},
+//   p = n T,  eta = eta_xy = (K/4) T^{1/2},  kappa = K T^{1/2},  mu = 0,
+//   Lambda = (8q/K) g n T^{3/2},
 // with g = 1 (the paper) or 1 - q (physics.cooling = "exact", hydro/cooling_rate.hpp).
 // The 2D ideal gas has adiabatic index 2 (T ~ n on an adiabat), so B = 2p and c^2 = 2T. The
 // xy shear viscosity of the dilute gas equals the longitudinal one (no bulk viscosity), so it

@@ -68,6 +68,7 @@ void EnskogClosure::cell_coefficients(const std::vector<double>& n, const std::v
     out.viscosity[i] = quarter_K * sqrt_T * enskog::viscosity_factor(phi);
     out.shear_viscosity[i] = quarter_K * sqrt_T * enskog::shear_viscosity_factor(phi);
     out.conductivity[i] = K * sqrt_T * enskog::conductivity_factor(phi);
+    out.mu[i] = 0.0;  // no heat flux down the density gradient (docs/physics.md §9)
   }
 }
 
@@ -113,6 +114,7 @@ HcsLinearisation EnskogClosure::hcs_linearisation() const {
   h.viscosity = 0.25 * physics_.K * enskog::viscosity_factor(phi);
   h.shear_viscosity = 0.25 * physics_.K * enskog::shear_viscosity_factor(phi);
   h.conductivity = physics_.K * enskog::conductivity_factor(phi);
+  h.mu = 0.0;  // so the clustering cutoff below needs no mu term
   // Lambda = c n chi(phi0 n) T^{3/2}: dLambda/dn = c (chi + phi chi').
   h.cooling_density = cooling_coefficient_ * (chi + phi * enskog::cooling_factor_derivative(phi));
   h.cooling_temperature = h.epsilon;  // (3/2 - 1) Lambda

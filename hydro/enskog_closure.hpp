@@ -3,7 +3,7 @@
 // each term of the dilute closure (hydro/dilute_closure.hpp) times an Enskog factor of the
 // local area fraction phi = phi0 n (hydro/enskog_factors.hpp), with r = 1 - 2q:
 //   p = n T F_p,  eta = (K/4) T^{1/2} F_eta,  eta_xy = (K/4) T^{1/2} F_eta_xy,
-//   kappa = K T^{1/2} F_kappa,  Lambda = (8q/K) g n T^{3/2} F_zeta,
+//   kappa = K T^{1/2} F_kappa,  mu = 0,  Lambda = (8q/K) g n T^{3/2} F_zeta,
 // with g the inelastic-loss factor of physics.cooling (hydro/cooling_rate.hpp). The adiabatic
 // modulus is B = n c^2 = n T (F_p + F_p^2 + phi dF_p/dphi). At phi0 -> 0 every factor is 1 and
 // the closure is the dilute one. Past the freezing fraction the closure reports itself invalid.

@@ -49,14 +49,22 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
     out.shear_coupling[i] = cell.shear_viscosity[i] * inverse_w;
     out.acoustic_coupling[i] = half_dt * cell.adiabatic_modulus[i] * inverse_w;
   }
-  // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa
+  // Heat flux at node j between cell centres j-1 and j: the mean of the two cells' kappa (mu)
   // over the centre-to-centre distance h_j = (dx_{j-1} + dx_j)/2 (the halves cancel exactly).
-  const auto heat_coupling = [&](int j, int l) {
-    return (cell.conductivity[l] + cell.conductivity[j]) / (widths[l] + widths[j]);
-  };
-  out.heat_coupling[0] = heat_coupling(0, n_ - 1);
+  const auto node_coupling = [&](const std::vector<double>& coefficient,
+                                 std::vector<double>& coupling) {
+    const auto at = [&](int j, int l) {
+      return (coefficient[l] + coefficient[j]) / (widths[l] + widths[j]);
+    };
+    coupling[0] = at(0, n_ - 1);
 #pragma GCC ivdep  // distinct arrays
-  for (int j = 1; j < n_; ++j) out.heat_coupling[j] = heat_coupling(j, j - 1);
+    for (int j = 1; j < n_; ++j) coupling[j] = at(j, j - 1);
+  };
+  node_coupling(cell.conductivity, out.heat_coupling);
+  bool density_heat_flux = false;
+  for (int i = 0; i < n_; ++i) density_heat_flux |= cell.mu[i] != 0.0;
+  out.density_heat_coupling.resize(density_heat_flux ? n_ : 0);
+  if (density_heat_flux) node_coupling(cell.mu, out.density_heat_coupling);
 }
 
 bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
@@ -115,8 +123,9 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   }
 
   // Energy, paper Eq. 2: m_i dT_i/dt = P_i (vbar_{i+1} - vbar_i) + [viscous heating by v_y]
-  // + conduction, with the same P_i as the momentum step (exact energy exchange) and
-  // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}).
+  // + conduction, with the same P_i as the momentum step (exact energy exchange),
+  // Crank-Nicolson conduction G_j = b_j (T_j - T_{j-1}) and the explicit heat flux down the
+  // density gradient D_j = d_j (n_j - n_{j-1}) (header comment).
   const auto work = [&](int i, int r) {
     const double dv = v_mid_[r] - v_mid_[i];
     dv_mid_[i] = dv;
@@ -146,6 +155,17 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
 #pragma GCC ivdep  // distinct arrays
   for (int i = 1; i + 1 < n; ++i) energy_row(i, i - 1, i + 1);
   energy_row(n - 1, n - 2, 0);
+  if (!c.density_heat_coupling.empty()) {
+    // The heat flux -mu dn/dx, explicit: D_j = d_j (n_j - n_{j-1}) enters as G_j does.
+    const auto& d = c.density_heat_coupling;
+    const auto& density = c.density;
+    const auto density_flux = [&](int i, int l, int r) {
+      rhs_[i] += d[r] * (density[r] - density[i]) - d[i] * (density[i] - density[l]);
+    };
+    density_flux(0, n - 1, 1);
+    for (int i = 1; i + 1 < n; ++i) density_flux(i, i - 1, i + 1);
+    density_flux(n - 1, n - 2, 0);
+  }
   if (!energy_.factorize(diag_, upper_)) return false;
   energy_.solve(rhs_, to.cell_T);
   double largest_change = 0.0;

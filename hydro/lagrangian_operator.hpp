@@ -11,6 +11,16 @@
 // This removes the sound-crossing limit of the thin cells in a density peak, where the flow is
 // supersonic and the compression limit already sets the step. Every constitutive coefficient
 // comes from the closure (hydro/closure.hpp), one call per pass.
+//
+// The inelastic heat flux down the density gradient, -mu dn/dx (hydro/closure.hpp), is frozen
+// with the pressure: explicit, at the pass's densities (in the corrector those of the mean of
+// the start and predicted widths, so time-centred to second order). It is conservative (a flux
+// between cells) and needs no step limit of its own: it drives T but not n directly, and the
+// implicit conduction bounds the temperature it drives in a cell to (mu/kappa) times the density
+// contrast, a fraction of the pressure's own response (mu/kappa < 0.2 for r >= 0.8); the
+// heating limit of the step (TimeStepControl::max_temperature_change) counts it with the work
+// and the conduction. A closure with mu = 0 everywhere (the dilute and Enskog ones) skips it,
+// so its runs are those of the paper's Eq. (2) bit for bit.
 #include <vector>
 
 #include "hydro/closure.hpp"
@@ -26,6 +36,8 @@ struct FrozenCoefficients {
   std::vector<double> viscous_coupling;  // a_i = eta_i / dx_i per cell
   std::vector<double> shear_coupling;    // a_xy_i = eta_xy_i / dx_i per cell
   std::vector<double> heat_coupling;     // b_j = kappa_j / h_j at node j (between cells j-1, j)
+  // d_j = mu_j / h_j at node j, empty when mu = 0 in every cell (no density-gradient heat flux)
+  std::vector<double> density_heat_coupling;
   std::vector<double>
       acoustic_coupling;             // alpha_i = B_i dt / (2 dx_i) (implicit adiabatic response)
   std::vector<double> reference_dv;  // dv_ref_i about which the pressure is linearised

@@ -147,10 +147,11 @@ Eigen::Matrix3cd hcs_linear_operator_kx(const Closure& closure, double kx) {
   const double eps = h.epsilon;
   const std::complex<double> ik(0.0, kx);
   Eigen::Matrix3cd a;
+  // With mu = 0 the (theta, nu) entry is -(Lambda_n + 0) = -Lambda_n exactly (Lambda_n >= +0).
   // clang-format off
   a << 0.0,                   -ik,                              0.0,
        -ik * h.pressure_density, eps - h.viscosity * kx * kx,  -ik * h.pressure_temperature,
-       -h.cooling_density,    -ik * h.compression_heating,      -(h.conductivity * kx * kx + h.cooling_temperature);
+       -(h.cooling_density + h.mu * kx * kx), -ik * h.compression_heating, -(h.conductivity * kx * kx + h.cooling_temperature);
   // clang-format on
   return a;
 }

@@ -7,11 +7,13 @@
 // and measure velocity in units of the thermal speed, w = u / T_H^{1/2}, and time by the
 // collision clock ds = T_H^{1/2} dt (see collision_clock in haff.hpp). With the closure's
 // HCS coefficients (HcsLinearisation in hydro/closure.hpp: eps = 1/t0, p_n = dp/dn,
-// p_T = dp/dT, p, eta, kappa, Lambda_n = dLambda/dn, Lambda_T' = dLambda/dT - Lambda, all at
-// n = T = 1) the linearised Eqs. (1)-(2) have constant coefficients:
+// p_T = dp/dT, p, eta, kappa, mu, Lambda_n = dLambda/dn, Lambda_T' = dLambda/dT - Lambda, all
+// at n = T = 1) the linearised Eqs. (1)-(2) have constant coefficients:
 //   nu_s    = -i kx w                                                (continuity, Eq. 1a)
 //   w_s     = -i kx p_n nu + (eps - eta kx^2) w - i kx p_T theta     (momentum, Eq. 1b)
-//   theta_s = -Lambda_n nu - i kx p w - (kappa kx^2 + Lambda_T') theta (energy, Eq. 2)
+//   theta_s = -(Lambda_n + mu kx^2) nu - i kx p w - (kappa kx^2 + Lambda_T') theta  (Eq. 2)
+// where -mu kx^2 nu is the divergence of the heat flux -mu dn/dx (hydro/closure.hpp): heat
+// flows down the density gradient, out of a dense spot (mu > 0 for r < 1).
 // For the dilute closure (p_n = p_T = p = 1, eta = K/4, kappa = K, eps = 4q/K, Lambda_n = 2 eps,
 // Lambda_T' = eps):
 //   w_s     = -i kx nu + (eps - K kx^2/4) w - i kx theta
@@ -21,8 +23,10 @@
 // the linearised loss -(8q/K)(n^2 T^{3/2} - T_H^{3/2}) relative to Haff cooling, -i kx w the
 // compressional heating -n T v_x and -K kx^2 theta the heat conduction.
 //
-// Any closure: det A = -kx^2 [p_n (kappa kx^2 + Lambda_T') - p_T Lambda_n], so a real rate crosses
-// zero at kx^2 = (p_T Lambda_n - p_n Lambda_T') / (p_n kappa) (HcsLinearisation's cutoff modes).
+// Any closure: det A = -kx^2 [p_n (kappa kx^2 + Lambda_T') - p_T (Lambda_n + mu kx^2)], so a real
+// rate crosses zero at kx^2 = (p_T Lambda_n - p_n Lambda_T') / (p_n kappa - p_T mu)
+// (HcsLinearisation's cutoff modes): the clustering mode, at pressure balance, is damped by the
+// conduction kappa - mu p_T/p_n, not kappa.
 // Dilute closure: det A = -kx^2 (K kx^2 - eps): a real rate crosses zero at K kx = 2 sqrt(q), i.e.
 // mode k is unstable iff pi k K < sqrt(q) (paper, text after Eq. 2). That this is also the exact
 // stability boundary (no complex pair crosses the imaginary axis) follows from Routh-Hurwitz:

@@ -1,6 +1,7 @@
 #include "hydro/scaled_closure.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "fields/constants.hpp"
 namespace granvv::hydro {
@@ -21,6 +22,7 @@ void ScaledClosure::cell_coefficients(const std::vector<double>& n, const std::v
   scale(out.viscosity, factors_.viscosity);
   scale(out.shear_viscosity, factors_.viscosity);
   scale(out.conductivity, factors_.conductivity);
+  scale(out.mu, factors_.mu);
 }
 
 void ScaledClosure::sound_speed(const std::vector<double>& n, const std::vector<double>& T,
@@ -43,21 +45,29 @@ void ScaledClosure::cool(const std::vector<double>& n, const std::vector<double>
 
 // The wrapped closure's linearisation with the scaled coefficients; the two cutoffs follow from
 // the general criteria of hydro/closure.hpp: the clustering mode grows while
-// p_n (kappa kx^2 + Lambda_T') < p_T Lambda_n, the shear mode while eta_xy kx^2 < eps, with
-// k = kx / (2 pi).
+// p_n (kappa kx^2 + Lambda_T') < p_T (Lambda_n + mu kx^2), i.e. while
+// (kappa - mu p_T/p_n) kx^2 < p_T Lambda_n/p_n - Lambda_T', the shear mode while
+// eta_xy kx^2 < eps, with k = kx / (2 pi). (mu = 0 leaves the conduction kappa as it is, bit for
+// bit: kappa - 0 = kappa.) Should mu p_T/p_n reach kappa, every short wave clusters: no cutoff.
 HcsLinearisation ScaledClosure::hcs_linearisation() const {
   HcsLinearisation h = closure_->hcs_linearisation();
   h.viscosity *= factors_.viscosity;
   h.shear_viscosity *= factors_.viscosity;
   h.conductivity *= factors_.conductivity;
+  h.mu *= factors_.mu;
   h.haff_time /= factors_.cooling;
   h.epsilon *= factors_.cooling;
   h.cooling_density *= factors_.cooling;
   h.cooling_temperature *= factors_.cooling;
+  const double pressure_balanced_conductivity =
+      h.conductivity - h.mu * h.pressure_temperature / h.pressure_density;
   const double clustering =
       (h.pressure_temperature * h.cooling_density / h.pressure_density - h.cooling_temperature) /
-      h.conductivity;
-  h.clustering_cutoff_mode = clustering > 0 ? std::sqrt(clustering) / kTwoPi : 0.0;
+      pressure_balanced_conductivity;
+  h.clustering_cutoff_mode = !(pressure_balanced_conductivity > 0.0)
+                                 ? std::numeric_limits<double>::infinity()
+                             : clustering > 0 ? std::sqrt(clustering) / kTwoPi
+                                              : 0.0;
   h.shear_cutoff_mode = std::sqrt(h.epsilon / h.shear_viscosity) / kTwoPi;
   return h;
 }

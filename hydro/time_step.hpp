@@ -4,6 +4,10 @@
 // or stretch any cell by more than a set fraction per step, which is what lets the run follow
 // a density peak towards the flow-by-inertia singularity (n ~ 1/(tau - t)) in a bounded number
 // of steps per decade of density.
+// The viscosity and the conduction are implicit and set no limit; nor does the inelastic heat
+// flux -mu dn/dx, explicit but bounded by the implicit conduction (hydro/lagrangian_operator.hpp).
+// What the heat fluxes do to a cell's temperature counts in the heating limit
+// (max_temperature_change).
 #include <string>
 #include <vector>
 

@@ -108,9 +108,13 @@ class HydroFamily : public ModelFamily {
     return scene.case_hydro->closure == closure_;
   }
   // The case keys (without "hydro.") of the transport factors (hydro/transport_factors.hpp), in
-  // the order the atlas gives them.
+  // the order the atlas gives them; mu's only for a closure with a heat flux down the density
+  // gradient (elsewhere mu = 0 and its factor changes nothing).
   std::vector<std::string> injected_error_keys() const override {
-    return {"viscosity_factor", "conductivity_factor", "cooling_factor"};
+    if (!hydro::closure_has_density_heat_flux(closure_)) {
+      return {"viscosity_factor", "conductivity_factor", "cooling_factor"};
+    }
+    return {"viscosity_factor", "conductivity_factor", "mu_factor", "cooling_factor"};
   }
 
   std::vector<std::string> overrides(const AtlasScene& scene,

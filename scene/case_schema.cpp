@@ -181,6 +181,9 @@ std::vector<KeySpec> rows_without_declared() {
       {"hydro.conductivity_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's heat conductivity (an injected model error, as "
        "hydro.viscosity_factor)"},
+      {"hydro.mu_factor", kReal, 1.0, open_closed(0, 100),
+       "multiplies the closure's heat-flux coefficient mu of q = -kappa dT/dx - mu dn/dx (an "
+       "injected model error, as hydro.viscosity_factor; no effect where mu = 0)"},
       {"hydro.cooling_factor", kReal, 1.0, open_closed(0, 100),
        "multiplies the closure's cooling sink, and so Haff's 1/t0 (an injected model error, as "
        "hydro.viscosity_factor)"},

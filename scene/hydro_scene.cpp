@@ -140,6 +140,7 @@ transport_factor_keys() {
       {"hydro.viscosity_factor", &hydro::TransportFactors::viscosity},
       {"hydro.conductivity_factor", &hydro::TransportFactors::conductivity},
       {"hydro.cooling_factor", &hydro::TransportFactors::cooling},
+      {"hydro.mu_factor", &hydro::TransportFactors::mu},
   };
   return keys;
 }

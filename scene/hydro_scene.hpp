@@ -24,8 +24,8 @@ struct HydroScene {
   // physics.area_fraction (in a comparison: the particle scene's), 0 = not given.
   double area_fraction = 0.0;
   hydro::CoolingRate cooling = hydro::CoolingRate::small_q;
-  // hydro.viscosity_factor, hydro.conductivity_factor, hydro.cooling_factor: injected model
-  // errors (hydro/transport_factors.hpp).
+  // hydro.viscosity_factor, hydro.conductivity_factor, hydro.cooling_factor, hydro.mu_factor:
+  // injected model errors (hydro/transport_factors.hpp).
   hydro::TransportFactors factors;
   // The closures' own keys (hydro/closure.hpp, ClosureKey) by name, every closure's: each
   // closure reads its own from ClosureParameters::extra.

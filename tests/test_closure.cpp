@@ -23,7 +23,7 @@ using granvv::testing::rk4;
 
 // Everything a closure says about one state (n, T), through its array interface.
 struct Point {
-  double p, B, eta, eta_xy, kappa, c, rate;
+  double p, B, eta, eta_xy, kappa, mu, c, rate;
 };
 
 Point at(const Closure& closure, double n, double T) {
@@ -37,6 +37,7 @@ Point at(const Closure& closure, double n, double T) {
           cell.viscosity[0],
           cell.shear_viscosity[0],
           cell.conductivity[0],
+          cell.mu[0],
           c[0],
           rate[0]};
 }
@@ -80,6 +81,7 @@ TEST(DiluteClosure, ArrayInterfaceEqualsTheFormulasBitwise) {
     EXPECT_EQ(cell.viscosity[i], 0.25 * 2e-3 * std::sqrt(T[i]));
     EXPECT_EQ(cell.shear_viscosity[i], cell.viscosity[i]);
     EXPECT_EQ(cell.conductivity[i], 2e-3 * std::sqrt(T[i]));
+    EXPECT_EQ(cell.mu[i], 0.0);  // the paper's Eq. (2): no heat flux down the density gradient
     EXPECT_EQ(c[i], std::sqrt(2.0 * T[i]));
     EXPECT_EQ(rate[i], dilute.cooling_coefficient() * n[i] * T[i] * std::sqrt(T[i]));
     const double g = 1.0 + 0.5 * dilute.cooling_coefficient() * n[i] * std::sqrt(T[i]) * 0.01;
@@ -168,6 +170,7 @@ TEST_P(EveryClosure, HcsLinearisationIsTheClosureAtNEqualsOneAndTEqualsOne) {
   EXPECT_DOUBLE_EQ(h.viscosity, x.eta);
   EXPECT_DOUBLE_EQ(h.shear_viscosity, x.eta_xy);
   EXPECT_DOUBLE_EQ(h.conductivity, x.kappa);
+  EXPECT_DOUBLE_EQ(h.mu, x.mu);
   // Derivatives by central differences (step 1e-5: truncation 1e-10 relative).
   const double d = 1e-5;
   const Point n_plus = at(*closure, 1.0 + d, 1.0), n_minus = at(*closure, 1.0 - d, 1.0);
@@ -178,13 +181,14 @@ TEST_P(EveryClosure, HcsLinearisationIsTheClosureAtNEqualsOneAndTEqualsOne) {
   EXPECT_NEAR(h.cooling_temperature, (T_plus.rate - T_minus.rate) / (2 * d) - x.rate,
               1e-9 * x.rate);
   // The hard-disk temperature scaling the collision-clock theory assumes (closure.hpp):
-  // p ~ T, eta, kappa ~ T^{1/2}, Lambda ~ T^{3/2} at fixed n.
+  // p ~ T, eta, kappa ~ T^{1/2}, mu, Lambda ~ T^{3/2} at fixed n (mu = 0 in some closures).
   const Point hot = at(*closure, 1.7, 4.0), cold = at(*closure, 1.7, 1.0);
   EXPECT_NEAR(hot.p / cold.p, 4.0, 1e-14);
   EXPECT_NEAR(hot.eta / cold.eta, 2.0, 1e-14);
   EXPECT_NEAR(hot.eta_xy / cold.eta_xy, 2.0, 1e-14);
   EXPECT_NEAR(hot.kappa / cold.kappa, 2.0, 1e-14);
   EXPECT_NEAR(hot.rate / cold.rate, 8.0, 1e-14);
+  EXPECT_NEAR(hot.mu, 8.0 * cold.mu, 1e-14 * std::abs(hot.mu));
 }
 
 INSTANTIATE_TEST_SUITE_P(Registered, EveryClosure,

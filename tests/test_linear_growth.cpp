@@ -2,7 +2,8 @@
 // scheme, against the rates of the dispersion relation (hydro/linear_stability.hpp), for
 // unstable and stable modes k <= 20 and all three branches, and the transverse shear mode; the
 // same for the Enskog closure at phi0 = 0.2 with the exact cooling rate (its own dispersion
-// relation, docs/physics.md §9).
+// relation, docs/physics.md §9), and for the dilute closure with a heat flux -mu dn/dx
+// (hydro/closure.hpp), which tests the operator's mu term against the linear theory's.
 // Tolerance 1e-3 relative: the spatial error of the scheme is (kx h)^2/12 = 3e-4 at k = 20
 // on 2000 cells, the temporal error (omega dt)^2/12 < 1e-4 at cfl = 0.5, and the nonlinear
 // correction is of the order of the amplitude 1e-6.
@@ -26,8 +27,50 @@ const Physics kPhysics{0.01, 0.01};  // modes 1-3 unstable: pi k K < sqrt(q) = 0
 const DiluteClosure kClosure(kPhysics);
 const EnskogClosure kEnskog(kPhysics, 0.2, CoolingRate::exact);
 
+// The dilute closure with a heat flux -mu dn/dx, mu = mu0 T^{3/2} (the hard-disk scaling of mu
+// at fixed n, hydro/closure.hpp; only mu(1, T_H) enters the linear theory). mu0 = 0.3 K is about
+// Garzo & Dufty's dilute mu at r = 0.8 (docs/physics.md §9), large enough that every rate
+// below moves by well over the tolerance (checked in MuMovesTheRates).
+class DiluteWithMu final : public Closure {
+ public:
+  DiluteWithMu(const Physics& physics, double mu0) : dilute_(physics), mu0_(mu0) {}
+  std::string name() const override { return "dilute_with_mu"; }
+  void cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                         CellCoefficients& out) const override {
+    dilute_.cell_coefficients(n, T, out);
+    for (size_t i = 0; i < n.size(); ++i) out.mu[i] = mu0_ * T[i] * std::sqrt(T[i]);
+  }
+  void sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                   std::vector<double>& c) const override {
+    dilute_.sound_speed(n, T, c);
+  }
+  void cooling_rate(const std::vector<double>& n, const std::vector<double>& T,
+                    std::vector<double>& rate) const override {
+    dilute_.cooling_rate(n, T, rate);
+  }
+  void cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
+            std::vector<double>& cooled) const override {
+    dilute_.cool(n, T, dt, cooled);
+  }
+  HcsLinearisation hcs_linearisation() const override {
+    HcsLinearisation h = dilute_.hcs_linearisation();
+    h.mu = mu0_;
+    // p_n = p_T = 1: the clustering mode grows while (kappa - mu) kx^2 < Lambda_n - Lambda_T'.
+    const double kx2 = (h.cooling_density - h.cooling_temperature) / (h.conductivity - h.mu);
+    h.clustering_cutoff_mode = std::sqrt(kx2) / (2.0 * M_PI);
+    return h;
+  }
+  ValidityScales validity_scales() const override { return dilute_.validity_scales(); }
+
+ private:
+  DiluteClosure dilute_;
+  double mu0_;
+};
+const DiluteWithMu kWithMu(kPhysics, 0.3 * kPhysics.K);
+
 const Closure& closure_named(const std::string& name) {
   if (name == "enskog") return kEnskog;
+  if (name == "dilute_with_mu") return kWithMu;
   return kClosure;
 }
 
@@ -77,10 +120,36 @@ INSTANTIATE_TEST_SUITE_P(UnstableAndStable, LinearGrowth,
                          ::testing::Combine(::testing::Values("dilute"),
                                             ::testing::Values(1, 2, 3, 4, 6, 10, 20),
                                             ::testing::Values(0, 1, 2)));
+INSTANTIATE_TEST_SUITE_P(DiluteWithMu, LinearGrowth,
+                         ::testing::Combine(::testing::Values("dilute_with_mu"),
+                                            ::testing::Values(1, 2, 3, 4, 10),
+                                            ::testing::Values(0, 1, 2)));
 INSTANTIATE_TEST_SUITE_P(Enskog, LinearGrowth,
                          ::testing::Combine(::testing::Values("enskog"),
                                             ::testing::Values(1, 2, 4, 10),
                                             ::testing::Values(0, 1, 2)));
+
+TEST(LinearGrowth, MuMovesTheRates) {
+  // The heat flux -mu dn/dx changes the dispersion relation by at least three times the runs'
+  // tolerance (so the runs above test the operator's mu term; the least moved is k = 1's sound
+  // pair, by 0.4 %), and with it the clustering cutoff: with
+  // K = 0.01, q = 0.01 and mu = 0.3 K it moves from sqrt(q)/(pi K) = 3.18 to 3.18/sqrt(0.7) =
+  // 3.80, still between modes 3 and 4.
+  for (int k : {1, 2, 3, 4, 10}) {
+    const auto with = hcs_modes(kWithMu, k), without = hcs_modes(kClosure, k);
+    for (int branch = 0; branch < 3; ++branch) {
+      EXPECT_GT(std::abs(with[branch].rate - without[branch].rate),
+                3 * kLinearRateTolerance * std::abs(with[branch].rate))
+          << "k = " << k << " branch " << branch;
+    }
+  }
+  EXPECT_NEAR(clustering_cutoff_mode(kWithMu), clustering_cutoff_mode(kClosure) / std::sqrt(0.7),
+              1e-12);
+  // The cutoff is where det A changes sign (hydro/linear_stability.hpp).
+  const double kx = 2 * M_PI * clustering_cutoff_mode(kWithMu);
+  EXPECT_GT(hcs_linear_operator_kx(kWithMu, kx * (1 - 1e-6)).determinant().real(), 0.0);
+  EXPECT_LT(hcs_linear_operator_kx(kWithMu, kx * (1 + 1e-6)).determinant().real(), 0.0);
+}
 
 TEST(LinearGrowth, ShearModeOfTransverseVelocity) {
   for (int k : {1, 3, 6, 12}) {  // shear-unstable iff pi k K < 2 sqrt(q): k <= 6

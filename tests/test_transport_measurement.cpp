@@ -240,8 +240,9 @@ TEST(TransportNormalisation, ClosuresRelativeToTheElasticDiluteValues) {
   const hydro::DiluteClosure dilute(physics);
   const hydro::EnskogClosure enskog(physics, 0.2, hydro::CoolingRate::small_q);
   for (const auto& c : compare::transport_coefficients()) {
-    EXPECT_NEAR(c.relative_value(dilute, physics.K, 1.0, 1.0), 1.0, 1e-15) << c.name;
-    EXPECT_NEAR(c.relative_value(dilute, physics.K, 0.7, 2.5), 1.0, 1e-15) << c.name;
+    const double elastic = c.name == "mu" ? 0.0 : 1.0;  // the elastic gas has no mu
+    EXPECT_NEAR(c.relative_value(dilute, physics.K, 1.0, 1.0), elastic, 1e-15) << c.name;
+    EXPECT_NEAR(c.relative_value(dilute, physics.K, 0.7, 2.5), elastic, 1e-15) << c.name;
   }
   EXPECT_NEAR(compare::transport_coefficient("shear_viscosity").relative_value(enskog, 0.08, 1, 1),
               hydro::enskog::shear_viscosity_factor(0.2), 1e-14);
@@ -249,7 +250,51 @@ TEST(TransportNormalisation, ClosuresRelativeToTheElasticDiluteValues) {
               hydro::enskog::conductivity_factor(0.2), 1e-14);
   EXPECT_EQ(compare::transport_coefficient("shear_viscosity").factor_keys,
             std::vector<std::string>{"hydro.viscosity_factor"});
+  // kappa and mu scale together in what a pressure-balanced mode sees.
+  EXPECT_EQ(compare::transport_coefficient("effective_conductivity").factor_keys,
+            (std::vector<std::string>{"hydro.conductivity_factor", "hydro.mu_factor"}));
   EXPECT_THROW(compare::transport_coefficient("bulk_viscosity"), std::invalid_argument);
+}
+
+// The dilute closure's coefficients with mu = 0.2 K T^(3/2): the closure seam's mu, read by the
+// coefficients of a pressure-balanced mode and of mu alone.
+class DiluteWithMu final : public hydro::Closure {
+ public:
+  explicit DiluteWithMu(const hydro::Physics& physics) : dilute_(physics), K_(physics.K) {}
+  std::string name() const override { return "dilute_with_mu"; }
+  void cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                         hydro::CellCoefficients& out) const override {
+    dilute_.cell_coefficients(n, T, out);
+    for (size_t i = 0; i < n.size(); ++i) out.mu[i] = 0.2 * K_ * T[i] * std::sqrt(T[i]);
+  }
+  void sound_speed(const std::vector<double>&, const std::vector<double>&,
+                   std::vector<double>&) const override {}
+  void cooling_rate(const std::vector<double>&, const std::vector<double>&,
+                    std::vector<double>&) const override {}
+  void cool(const std::vector<double>&, const std::vector<double>&, double,
+            std::vector<double>&) const override {}
+  hydro::HcsLinearisation hcs_linearisation() const override { return {}; }
+  hydro::ValidityScales validity_scales() const override { return {}; }
+
+ private:
+  hydro::DiluteClosure dilute_;
+  double K_;
+};
+
+TEST(TransportNormalisation, EffectiveConductivityIsKappaLessMuNOverT) {
+  // kappa = K T^(1/2), mu = 0.2 K T^(3/2): (kappa - mu n / T) / kappa0 = 1 - 0.2 n, and
+  // mu / mu0 = 0.2 K T^(3/2) / (K T^(3/2) / n) = 0.2 n, at any T. Tolerance: a few roundings.
+  const DiluteWithMu closure({0.08, 0.05});
+  for (double n : {1.0, 0.6}) {
+    EXPECT_NEAR(compare::transport_coefficient("effective_conductivity")
+                    .relative_value(closure, 0.08, n, 1.7),
+                1.0 - 0.2 * n, 1e-14);
+    EXPECT_NEAR(compare::transport_coefficient("mu").relative_value(closure, 0.08, n, 1.7), 0.2 * n,
+                1e-14);
+    EXPECT_NEAR(
+        compare::transport_coefficient("conductivity").relative_value(closure, 0.08, n, 1.7), 1.0,
+        1e-14);
+  }
 }
 
 }  // namespace

@@ -253,7 +253,7 @@ def fig_dem_map(run):
     return Drawn(fig, measured, caption_values={"tolerance": fmt(tol), "against": against.get("setting", "none")})
 
 
-POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "cooling_factor": "C3"}
+POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "mu_factor": "C2", "cooling_factor": "C3"}
 
 
 @figure(file="a5_comparison_power.png", section="atlas", anchor="comparison_power",
