@@ -9,12 +9,16 @@
 namespace granvv::app {
 
 nlohmann::json transport_summary(const TransportMeasurement& m) {
-  nlohmann::json closures = nlohmann::json::object();
-  for (const auto& [name, value] : m.closures) closures[name] = number_or_null(value);
+  nlohmann::json closures = nlohmann::json::object(), sigmas = nlohmann::json::object();
+  for (const auto& [name, value] : m.closures) {
+    closures[name] = number_or_null(value);
+    sigmas[name] = number_or_null((value - m.measured) / m.error);
+  }
   nlohmann::json entry = {
       {"measured", number_or_null(m.measured)},
       {"error", number_or_null(m.error)},
       {"closures", closures},
+      {"closure_deviation_sigmas", sigmas},
       {"closure", m.closure},
       {"factor", number_or_null(m.fit.factor)},
       {"factor_error", number_or_null(m.fit.error)},

@@ -81,6 +81,8 @@ TEST(TransportCli, ShearWaveWritesTheTransportBlockAndGroup) {
   EXPECT_EQ(eta["closures"]["dilute"].get<double>(), 1.0);
   EXPECT_GT(eta["closures"]["enskog"].get<double>(), 0.9);
   EXPECT_DOUBLE_EQ(eta["measured"].get<double>(), eta["factor"].get<double>());
+  EXPECT_DOUBLE_EQ(eta["closure_deviation_sigmas"]["dilute"].get<double>(),
+                   (1.0 - eta["measured"].get<double>()) / eta["error"].get<double>());
 
   H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
   const H5::Group g = h5.openGroup("/transport/shear_viscosity");
