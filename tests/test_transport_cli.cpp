@@ -98,6 +98,25 @@ TEST(TransportCli, ShearWaveWritesTheTransportBlockAndGroup) {
   fs::remove_all(dir);
 }
 
+// Fitting from snapshot 3 of 5 leaves two snapshots: the measurement says why it was not made,
+// with null values, and the run is otherwise complete (exit 0).
+TEST(TransportCli, TooFewSnapshotsLeaveTheRunAndSayWhy) {
+  const fs::path dir = fresh_directory("transport-few");
+  const fs::path out = dir / "out";
+  const CliStreams r = run_cli_streams(
+      "run " + shell_quote(write_case(dir).string()) +
+      " --quiet --no-report --set compare.transport_start=3 --set md.ensemble=2 --out " +
+      shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = json::parse(read_text(out / "summary.json"));
+  const json& eta = s["transport"]["shear_viscosity"];
+  EXPECT_TRUE(eta["measured"].is_null()) << eta.dump(2);
+  EXPECT_TRUE(eta["error"].is_null());
+  EXPECT_NE(eta["failure"].get<std::string>().find("compare.transport_start"), std::string::npos);
+  EXPECT_EQ(s["status"], "ok");
+  fs::remove_all(dir);
+}
+
 TEST(TransportCli, BadKeysExitTwoWithOneLineNamingTheKey) {
   const fs::path dir = fresh_directory("transport-bad");
   const fs::path file = write_case(dir);
