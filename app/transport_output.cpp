@@ -44,6 +44,7 @@ void write_transport_results(const std::filesystem::path& file, const TransportM
   h5::write_attribute(g, "closure", m.closure);
   h5::write_attribute(g, "factor", m.fit.factor);
   h5::write_attribute(g, "factor_error", m.fit.error);
+  h5::write_attribute(g, "start_amplitude", m.fit.start);
   h5::write_attribute(g, "chi2", m.fit.chi2);
   h5::write_attribute(g, "degrees_of_freedom", double(m.fit.degrees_of_freedom));
   h5::write_attribute(g, "measured", m.measured);

@@ -41,11 +41,24 @@ double polynomial_through(const std::vector<double>& x, const std::vector<double
   return sum;
 }
 
+// A(F): the start amplitude of least chi^2 at factor F, sum w a R / sum w R^2 (w = 1/sigma^2).
+double best_start(const FactorGrid& grid, const std::vector<double>& a,
+                  const std::vector<double>& sigma, double factor) {
+  const std::vector<double> r = predicted_amplitudes(grid, 1.0, factor);
+  double num = 0.0, den = 0.0;
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    const double w = 1.0 / (sigma[s] * sigma[s]);
+    num += w * a[s] * r[s], den += w * r[s] * r[s];
+  }
+  return num / den;
+}
+
 double chi2_at(const FactorGrid& grid, const std::vector<double>& a,
                const std::vector<double>& sigma, double factor) {
-  const std::vector<double> p = predicted_amplitudes(grid, a.front(), factor);
+  const std::vector<double> p =
+      predicted_amplitudes(grid, best_start(grid, a, sigma, factor), factor);
   double chi2 = 0.0;
-  for (std::size_t s = 1; s < a.size(); ++s) {
+  for (std::size_t s = 0; s < a.size(); ++s) {
     const double d = (a[s] - p[s]) / sigma[s];
     chi2 += d * d;
   }
@@ -87,13 +100,14 @@ double best_factor(const FactorGrid& grid, const std::vector<double>& a,
   return chosen;
 }
 
-// The jackknife error of a_s - a_0 R_s(F) at every snapshot.
+// The jackknife error of a_s - A R_s(F) at every snapshot, each sample with its own A(F).
 std::vector<double> residual_errors(const FactorGrid& grid,
                                     const std::vector<std::vector<double>>& samples,
-                                    double factor) {
+                                    const std::vector<double>& sigma, double factor) {
   std::vector<std::vector<double>> residuals;
   for (const auto& a : samples) {
-    const std::vector<double> p = predicted_amplitudes(grid, a.front(), factor);
+    const std::vector<double> p =
+        predicted_amplitudes(grid, best_start(grid, a, sigma, factor), factor);
     std::vector<double> r;
     for (std::size_t s = 0; s < a.size(); ++s) r.push_back(a[s] - p[s]);
     residuals.push_back(std::move(r));
@@ -145,16 +159,18 @@ FactorFit fit_transport_factor(const FactorGrid& grid,
   fit.amplitude = member_mean(member_amplitudes);
   fit.amplitude_error = jackknife_errors(samples);
   const double first = best_factor(grid, fit.amplitude, fit.amplitude_error);
-  fit.residual_error = residual_errors(grid, samples, first);
+  fit.residual_error = residual_errors(grid, samples, fit.amplitude_error, first);
   fit.factor = best_factor(grid, fit.amplitude, fit.residual_error);
   fit.chi2 = chi2_at(grid, fit.amplitude, fit.residual_error, fit.factor);
-  fit.degrees_of_freedom = int(snapshots) - 2;
+  fit.degrees_of_freedom = int(snapshots) - 2;  // F and A
   fit.at_grid_edge = fit.factor == grid.factors.front() || fit.factor == grid.factors.back();
   std::vector<double> refitted;
   for (const auto& a : samples) refitted.push_back(best_factor(grid, a, fit.residual_error));
   fit.error = jackknife_error(refitted);
-  fit.fitted = predicted_amplitudes(grid, fit.amplitude.front(), fit.factor);
-  fit.unit_factor = predicted_amplitudes(grid, fit.amplitude.front(), 1.0);
+  fit.start = best_start(grid, fit.amplitude, fit.residual_error, fit.factor);
+  fit.fitted = predicted_amplitudes(grid, fit.start, fit.factor);
+  fit.unit_factor =
+      predicted_amplitudes(grid, best_start(grid, fit.amplitude, fit.residual_error, 1.0), 1.0);
   return fit;
 }
 

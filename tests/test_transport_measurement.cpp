@@ -151,8 +151,10 @@ TEST(TransportFactorFit, NoiselessMembersGiveTheirFactor) {
   EXPECT_NEAR(fit.chi2, 0.0, 1e-9);
   EXPECT_EQ(fit.degrees_of_freedom, 11);
   EXPECT_FALSE(fit.at_grid_edge);
+  EXPECT_NEAR(fit.start, 0.29, 1e-9);
   EXPECT_NEAR(fit.fitted[12], 0.29 * std::exp(-truth * kRate * 2.4), 1e-9);
-  EXPECT_NEAR(fit.unit_factor[12], 0.29 * std::exp(-kRate * 2.4), 1e-12);
+  // The curve at F = 1 with its own best start: the F = 1 decay.
+  EXPECT_NEAR(fit.unit_factor[12] / fit.unit_factor[0], std::exp(-kRate * 2.4), 1e-12);
 }
 
 // An ensemble of members about a0 exp(-F c t): each member's start amplitude off by a random

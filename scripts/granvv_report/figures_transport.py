@@ -14,10 +14,10 @@ from .style import CMP_FIELD_TEX, CMP_HYDRO, CMP_MD, T_UNIT
         title="Transport coefficients from the decay of a mode",
         caption=("The k = 1 {phase} 2πx amplitude of {field} ({relative}): the mean over the "
                  "particle members with its jackknife error (delete-one, over members), against the "
-                 "hydro's decay from the particles' amplitude at the first fitted snapshot, with the "
-                 "{closure} closure's coefficient (F = 1) and with it times the fitted factor F. "
-                 "F is fitted to every snapshot after the first at once, its error from refitting "
-                 "every leave-one-out ensemble (docs/physics.md §14)."))
+                 "hydro's decay with the {closure} closure's coefficient (F = 1) and with it times the "
+                 "fitted factor F, each from the start amplitude that fits best. F is fitted to "
+                 "every snapshot at once, its error from refitting every leave-one-out ensemble "
+                 "(docs/physics.md §14)."))
 def fig_cmp_transport(run):
     """Mode amplitude ± jackknife error against the hydro at F = 1 and the fitted F."""
     groups = {name: G for name, G in (run.transport or {}).items() if G}
