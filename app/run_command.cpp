@@ -20,6 +20,7 @@
 #include "app/report_command.hpp"
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
+#include "app/transport_output.hpp"
 #include "models/compare_scene.hpp"
 #include "models/model.hpp"
 #include "scene/atomic_file.hpp"
@@ -362,6 +363,32 @@ MdOutcome run_particle_part(RunContext& c) {
   return particles;
 }
 
+// The transport measurement of a comparison (models/transport_measurement.hpp). A measurement
+// that cannot be made (a hydro of the factor grid failed or stopped before the particles' last
+// snapshot) leaves the rest of the run as it is: its block says why, with null values.
+void measure_transport_part(RunContext& c, const CompareScene& compare_scene, const MdOutcome& md) {
+  const CompareScene::Transport& transport = *compare_scene.transport;
+  try {
+    const TransportMeasurement m =
+        measure_transport(transport, compare_scene.closures, c.scene, *c.md_scene, md);
+    write_output(c.ranks, c.work / "results.h5",
+                 [&] { write_transport_results(c.work / "results.h5", m); });
+    c.summary["transport"] = transport_summary(m);
+    c.log.info(
+        "transport: {} = {:.4g} +- {:.4g} of the elastic dilute value (factor {:.4g} "
+        "+- {:.4g} on the {} closure's, chi2 {:.3g} for {} degrees of freedom)",
+        m.coefficient, m.measured, m.error, m.fit.factor, m.fit.error, m.closure, m.fit.chi2,
+        m.fit.degrees_of_freedom);
+  } catch (const std::runtime_error& e) {
+    c.log.warn("transport: {} not measured: {}", transport.coefficient, e.what());
+    c.summary["transport"] = {{transport.coefficient,
+                               {{"measured", nullptr},
+                                {"error", nullptr},
+                                {"closures", nlohmann::json::object()},
+                                {"failure", e.what()}}}};
+  }
+}
+
 // The parts of a run in order, each part's results written as soon as it has finished: in a
 // comparison the particles first (the hydro starts from their coarse-grained t = 0 fields or the
 // case's, and is sampled at their snapshot times), the hydro, the particles of a scene without a
@@ -436,6 +463,7 @@ void run_parts(RunContext& c, const std::optional<CompareScene>& compare_scene,
       compare_closures(*compare_scene, c.scene, *outcome, compared, *c.md_scene, *md, c.ranks,
                        c.work / "results.h5", c.summary["compare"], c.log);
     }
+    if (compare_scene->transport) measure_transport_part(c, *compare_scene, *md);
     c.log.info("compare: {}", compared.verdict);
     c.log.info("compare: cost hydro {:.3g} s wall, md {:.3g} s wall ({:.3g} {})",
                outcome->run.wall_seconds, md->wall_seconds, md->cost.work, md->cost.work_unit);

@@ -18,6 +18,12 @@ double profile_maximum(const std::function<double(double)>& f) {
   return largest;
 }
 
+std::function<double(double)> largest_flow_component(std::function<double(double)> v,
+                                                     std::function<double(double)> vy) {
+  if (!vy) return [v](double x) { return std::abs(v(x)); };
+  return [v, vy](double x) { return std::max(std::abs(v(x)), std::abs(vy(x))); };
+}
+
 SignalToNoise velocity_signal_to_noise(const std::function<double(double)>& v,
                                        double number_density, double box_width, double box_length,
                                        int bins) {

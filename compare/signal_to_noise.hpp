@@ -2,7 +2,8 @@
 // How clearly an imposed initial flow stands out of the thermal noise of N disks
 // (docs/physics.md §8), in the hydro's scaled units (x in [-1/2, 1/2), T0 = m = 1). Three
 // forms, each a signal against its noise:
-//   velocity: the largest initial flow speed max|v0| against the thermal noise of a bin mean,
+//   velocity: the largest initial flow component max(|v0|, |v_y0|) against the thermal noise of a
+//   bin mean,
 //             (n0 Ly l)^{-1/2} on the coarse-graining scale l = Lx / bins;
 //   gradient: the largest imposed gradient max|v0'| against the noise of the velocity gradient
 //             on the shortest unstable wavelength l = Lx / k_max, k_max sqrt(k_max / N): how
@@ -21,6 +22,12 @@ struct SignalToNoise {
 
 // The largest value of f on the 4096 cell centres of [-1/2, 1/2).
 double profile_maximum(const std::function<double(double)>& f);
+
+// The largest flow component of the initial state at x, max(|v|, |v_y|): the profile of the
+// velocity form, which counts a transverse flow (a shear wave) as the flow it is, since the
+// bin mean of either component has the same thermal noise. vy empty: no transverse flow.
+std::function<double(double)> largest_flow_component(std::function<double(double)> v,
+                                                     std::function<double(double)> vy);
 
 // v: the initial velocity profile; number_density n0, box_width Ly and box_length Lx in MD
 // units; bins the coarse-graining bins over Lx.

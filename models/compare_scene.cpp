@@ -20,6 +20,7 @@
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "models/model.hpp"
+#include "models/transport_measurement.hpp"
 
 namespace granvv::app {
 namespace {
@@ -139,6 +140,21 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
                         "md.area_fraction = " + format_value(c.value("md.area_fraction")) + " (" +
                         problem->reason + ")");
     }
+  }
+  if (c.string("compare.transport") != "none") {
+    CompareScene::Transport t;
+    t.coefficient = c.string("compare.transport");
+    t.field = c.string("compare.transport_field");
+    t.phase = compare::mode_phase(c.string("compare.transport_phase"));
+    t.start = c.int_value("compare.transport_start");
+    t.factors = c.reals("compare.transport_factors");
+    if (t.factors.empty()) t.factors = kDefaultTransportFactors;
+    if (t.factors.size() < 2) {
+      throw ConfigError(c.origin("compare.transport_factors") + ": compare.transport_factors = " +
+                        format_value(c.value("compare.transport_factors")) +
+                        ": needs at least two factors to fit between (or [] for the default)");
+    }
+    s.transport = std::move(t);
   }
   if (c.string("md.kernel") != "bin") {
     throw ConfigError(c.origin("md.kernel") + ": md.kernel = \"" + c.string("md.kernel") +

@@ -8,6 +8,7 @@
 
 #include "compare/binned_fields.hpp"
 #include "compare/field_metrics.hpp"
+#include "compare/mode_amplitudes.hpp"
 #include "compare/verdict.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
@@ -25,6 +26,16 @@ struct CompareScene {
   // compare.closures: the hydro closures run against the one particle ensemble, each compared
   // on its own; the first is hydro.closure and fills the hydro and compare blocks.
   std::vector<std::string> closures;
+  // compare.transport*: the coefficient the scene measures, from which field's k = 1 mode, and
+  // the factors at which the hydro runs for the fit (models/transport_measurement.hpp); none
+  // for compare.transport = "none".
+  struct Transport {
+    std::string coefficient, field;
+    compare::ModePhase phase = compare::ModePhase::sine;
+    int start = 0;  // compare.transport_start: the snapshot the fit starts from
+    std::vector<double> factors;
+  };
+  std::optional<Transport> transport;
 };
 
 // Reads [compare]; std::nullopt if compare.enabled is false. Throws ConfigError, naming

@@ -8,6 +8,9 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "compare/mode_amplitudes.hpp"
+#include "compare/transport_coefficients.hpp"
+#include "fields/field_series.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
@@ -29,6 +32,13 @@ constexpr auto kStrings = ValueType::string_array;
 const Default kRequired = Default::required();
 const Default kFileStem = Default::file_stem();
 const Default kEmpty = Default::empty_array();
+
+// compare.transport: "none" or a coefficient a scene can measure.
+std::vector<std::string> transport_choices() {
+  std::vector<std::string> choices = {"none"};
+  for (const auto& name : compare::transport_coefficient_names()) choices.push_back(name);
+  return choices;
+}
 
 // Integer keys are read as C++ int (CaseConfig::int_value): none may exceed this.
 constexpr double kIntMax = 2147483647.0;
@@ -262,6 +272,19 @@ std::vector<KeySpec> rows_without_declared() {
        distinct_choices(hydro::closure_names()),
        "the hydro closures run against the one particle ensemble, each compared on its own "
        "(default: [hydro.closure]); the first fills the compare and hydro blocks"},
+      {"compare.transport", kString, "none", one_of(transport_choices()),
+       "the transport coefficient the scene measures (docs/physics.md §14): the hydro's factor on "
+       "it fitted to the particles' mode amplitudes (\"none\" = no measurement)"},
+      {"compare.transport_field", kString, "v_y", one_of(fields::hydrodynamic_fields()),
+       "the field whose k = 1 mode measures compare.transport"},
+      {"compare.transport_phase", kString, "sin", one_of(compare::mode_phase_names()),
+       "the part of the field's k = 1 mode it is read from: sin 2 pi x or cos 2 pi x"},
+      {"compare.transport_start", kInteger, 0, closed_closed(0, 1e4),
+       "the snapshot (index into md.output_times) from which the decay is matched, relative to "
+       "the amplitude there: past the particles' kinetic transient of the first collisions"},
+      {"compare.transport_factors", kReals, kEmpty, increasing(positive()),
+       "the factors on the closure's coefficient at which the hydro runs for the fit, at least "
+       "two ([] = 0.5, 0.75, 1, 1.25, 1.5)"},
 
       // [atlas]: what `granvv atlas` judges and the grid of the hydro's cost knobs
       // (docs/atlas.md). Empty lists take the atlas's defaults around the case's own setting.

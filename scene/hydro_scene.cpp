@@ -102,8 +102,7 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
   s.closure = c.string("hydro.closure");
   s.cooling = hydro::cooling_rate_from_name(c.string("physics.cooling"));
   s.area_fraction = c.real("physics.area_fraction");
-  s.factors = {c.real("hydro.viscosity_factor"), c.real("hydro.conductivity_factor"),
-               c.real("hydro.cooling_factor"), c.real("hydro.mu_factor")};
+  for (const auto& [key, factor] : transport_factor_keys()) s.factors.*factor = c.real(key);
   if (c.boolean("md.enabled") && c.boolean("compare.enabled")) {
     const double scene = c.real("md.area_fraction");
     if (s.area_fraction != 0.0 && s.area_fraction != scene) {  // 0: not given
@@ -127,6 +126,27 @@ void read_closure(const CaseConfig& c, HydroScene& s) {
 }
 
 }  // namespace
+
+const std::vector<std::pair<std::string, double hydro::TransportFactors::*>>&
+transport_factor_keys() {
+  static const std::vector<std::pair<std::string, double hydro::TransportFactors::*>> keys = {
+      {"hydro.viscosity_factor", &hydro::TransportFactors::viscosity},
+      {"hydro.conductivity_factor", &hydro::TransportFactors::conductivity},
+      {"hydro.cooling_factor", &hydro::TransportFactors::cooling},
+      {"hydro.mu_factor", &hydro::TransportFactors::mu},
+  };
+  return keys;
+}
+
+void set_transport_factor(HydroScene& scene, const std::string& key, double value) {
+  for (const auto& [name, factor] : transport_factor_keys()) {
+    if (name == key) {
+      scene.factors.*factor = value;
+      return;
+    }
+  }
+  throw std::invalid_argument("set_transport_factor: \"" + key + "\" is not a factor key");
+}
 
 hydro::ClosureParameters closure_parameters(const HydroScene& scene) {
   hydro::ClosureParameters params = scene.closure_settings;

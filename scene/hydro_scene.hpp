@@ -4,6 +4,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fields/field_series.hpp"
@@ -46,6 +47,13 @@ struct HydroScene {
   double convergence_t = 0.0;
   double convergence_cfl = 0.0;
 };
+
+// The case keys of the injected model errors and the factor of HydroScene::factors each sets,
+// the one list hydro_scene_from reads them by.
+const std::vector<std::pair<std::string, double hydro::TransportFactors::*>>&
+transport_factor_keys();
+// Sets the factor of case key `key`; throws std::invalid_argument for another key.
+void set_transport_factor(HydroScene& scene, const std::string& key, double value);
 
 // The closure's parameters and the closure itself, from the scene's physics.
 hydro::ClosureParameters closure_parameters(const HydroScene& scene);

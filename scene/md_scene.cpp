@@ -129,8 +129,9 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
 
 SignalToNoise initial_signal_to_noise(const MdScene& scene) {
   const auto& sc = scene.spec.scene;
-  return compare::velocity_signal_to_noise(scene.spec.fields.v, sc.number_density(), sc.box_width,
-                                           sc.box_length, scene.spec.bins);
+  const auto flow = compare::largest_flow_component(scene.spec.fields.v, scene.spec.fields.vy);
+  return compare::velocity_signal_to_noise(flow, sc.number_density(), sc.box_width, sc.box_length,
+                                           scene.spec.bins);
 }
 
 SignalToNoise initial_gradient_signal_to_noise(const MdScene& scene) {

@@ -12,6 +12,7 @@
 
 #include "compare/field_metrics.hpp"
 #include "compare/side_by_side.hpp"
+#include "compare/signal_to_noise.hpp"
 #include "compare/verdict.hpp"
 
 namespace {
@@ -166,6 +167,56 @@ TEST(SideBySide, AUniformOffsetBeyondTheErrorsIsTheModels) {
                                                          {"n", "v_x", "T"}, 3.0, 0.9, 0.0, rule);
   EXPECT_TRUE(close.window.throughout);
   EXPECT_EQ(close.kind, Disagreement::none);
+}
+
+}  // namespace
+
+namespace {
+
+// A comparison on 8 bins at two times where only v_y parts: the particles' v_y = 0.4 sin 2 pi x
+// with error 0.01 at every bin, the hydro's half of it; n, v_x and T equal.
+granvv::fields::FieldSeries shear_fields(double amplitude) {
+  auto f = granvv::fields::FieldSeries::on_bins(-0.5, 1.0, 8);
+  for (double t : {0.0, 1.0}) {
+    granvv::fields::FieldSnapshot s;
+    s.t = t;
+    for (int b = 0; b < 8; ++b) {
+      const double x = -0.5 + (b + 0.5) / 8;
+      s.x.push_back(x);
+      s.n.push_back(1.0), s.v_x.push_back(0.0), s.T.push_back(1.0), s.count.push_back(64);
+      s.v_y.push_back(amplitude * std::sin(2 * M_PI * x));
+      s.n_stderr.push_back(0.01), s.v_x_stderr.push_back(0.01), s.T_stderr.push_back(0.01);
+      s.v_y_stderr.push_back(0.01);
+    }
+    f.snapshots.push_back(s);
+  }
+  return f;
+}
+
+TEST(Verdict, TransverseOnlyDisagreementWithAClearShearWaveIsTheModels) {
+  using granvv::compare::compared_fields;
+  using granvv::compare::judge_side_by_side;
+  using granvv::compare::largest_flow_component;
+  using granvv::compare::velocity_signal_to_noise;
+  const auto none = [](double) { return 0.0; };
+  const auto shear = [](double x) { return 0.4 * std::sin(2 * M_PI * x); };
+  // n0 = 1, Ly = 32, Lx = 16 on 8 bins: n0 Ly l = 64, noise 1/8; the signal is the largest v_y on
+  // the 4096 profile centres, 0.4 cos(pi/4096): S/N 3.2 cos(pi/4096) (a few roundings).
+  const double ratio =
+      velocity_signal_to_noise(largest_flow_component(none, shear), 1.0, 32.0, 16.0, 8).ratio();
+  EXPECT_NEAR(ratio, 3.2 * std::cos(M_PI / 4096), 1e-14);
+  // Without v_y the same scene had no signal at all.
+  EXPECT_EQ(velocity_signal_to_noise(largest_flow_component(none, {}), 1.0, 32.0, 16.0, 8).ratio(),
+            0.0);
+  const auto judged = judge_side_by_side(shear_fields(0.4), shear_fields(0.2),
+                                         compared_fields(true), 3.0, 0.95, ratio, kRule);
+  EXPECT_EQ(judged.window.first_out, "v_y");
+  EXPECT_NEAR(judged.offset_sigmas, 0.0, 1e-12);  // a sine has no box mean: it cannot tell
+  EXPECT_STREQ(disagreement_name(judged.kind), "model");
+  // Judged with the old, v_y-blind signal (0) the same difference was noise.
+  const auto blind = judge_side_by_side(shear_fields(0.4), shear_fields(0.2), compared_fields(true),
+                                        3.0, 0.95, 0.0, kRule);
+  EXPECT_STREQ(disagreement_name(blind.kind), "noise");
 }
 
 }  // namespace

@@ -110,6 +110,8 @@ def load_results(path):
             for key, p in GROUPS.items():
                 res[key] = _read_group(f, p)
             res["compare"] = _read_compare(f)
+            res["transport"] = {name: _read_group(f, f"transport/{name}")
+                                for name in (f["transport"] if "transport" in f else [])}
             res["groups"] = []
             f.visit(lambda name: res["groups"].append(name) if isinstance(f[name], h5py.Group) else None)
             return res
@@ -404,6 +406,7 @@ class Run:
         for key in GROUPS:
             setattr(self, key, res[key])
         self.compare = res["compare"]
+        self.transport = res["transport"]  # /transport/<coefficient> groups by coefficient
         self.groups = res["groups"]
         self.config_text = self.attrs.get("config_toml")
         self.cfg = {}
@@ -426,6 +429,9 @@ class Run:
 
     def compare_summary(self, *keys):
         return get(self.summary, "compare", *keys)
+
+    def transport_summary(self, *keys):
+        return get(self.summary, "transport", *keys)
 
     def engine_blocks(self):
         """[(engine name, its summary.json block)] of the engines that wrote one."""

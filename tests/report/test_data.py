@@ -200,6 +200,8 @@ class ParticleRunWithComparison(unittest.TestCase):
         self.assertIsInstance(window[2], str)
         self.assertEqual([name for name, _ in self.out.engine_blocks()], ["hydro", "md", "compare"])
         self.assertTrue(self.out.has_md() and self.out.has_compare())
+        self.assertEqual(self.out.transport, {})  # compare.transport = "none": no /transport
+        self.assertIsNone(self.out.transport_summary("shear_viscosity"))
 
 
 class RefusedFolders(unittest.TestCase):

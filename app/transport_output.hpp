@@ -1,0 +1,22 @@
+#pragma once
+// A scene's transport measurement in the outputs (docs/outputs.md): summary.json's `transport`
+// block and results.h5's /transport group.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "models/transport_measurement.hpp"
+
+namespace granvv::app {
+
+// {<coefficient>: {"measured", "error", "closures": {name: value}, ...}}: every value relative
+// to the elastic dilute coefficient of hard disks, with the fit behind it (the factor F on
+// hydro.closure's coefficient, its error, chi^2 and its degrees of freedom, whether F is at the
+// end of the grid, the field and its phase, the grid's factors and their case keys).
+nlohmann::json transport_summary(const TransportMeasurement& m);
+
+// /transport/<coefficient> in an existing results.h5: t, the particles' mean amplitude and its
+// jackknife error, the residual's error, the hydro's curves at F = 1 and at the fitted F, and the
+// hydro's amplitudes at every factor of the grid; the fit's numbers as attributes.
+void write_transport_results(const std::filesystem::path& file, const TransportMeasurement& m);
+
+}  // namespace granvv::app

@@ -1,0 +1,96 @@
+#include "compare/transport_coefficients.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "fields/constants.hpp"
+
+namespace granvv::compare {
+namespace {
+
+hydro::CellCoefficients coefficients_at(const hydro::Closure& closure, double n, double T) {
+  hydro::CellCoefficients c;
+  closure.cell_coefficients({n}, {T}, c);
+  return c;
+}
+
+double relative_shear_viscosity(const hydro::Closure& closure, double K, double n, double T) {
+  return coefficients_at(closure, n, T).shear_viscosity[0] / scaled_elastic_shear_viscosity(K, T);
+}
+
+double relative_conductivity(const hydro::Closure& closure, double K, double n, double T) {
+  return coefficients_at(closure, n, T).conductivity[0] / scaled_elastic_conductivity(K, T);
+}
+
+// kappa - mu n / T over kappa0.
+double relative_effective_conductivity(const hydro::Closure& closure, double K, double n,
+                                       double T) {
+  const hydro::CellCoefficients c = coefficients_at(closure, n, T);
+  return (c.conductivity[0] - c.mu[0] * n / T) / scaled_elastic_conductivity(K, T);
+}
+
+double relative_mu(const hydro::Closure& closure, double K, double n, double T) {
+  return coefficients_at(closure, n, T).mu[0] / scaled_elastic_mu(K, n, T);
+}
+
+}  // namespace
+
+double elastic_shear_viscosity(double mass, double temperature, double diameter) {
+  return std::sqrt(mass * temperature / kPi) / (2.0 * diameter);
+}
+
+double elastic_conductivity(double mass, double temperature, double diameter) {
+  return 4.0 * elastic_shear_viscosity(mass, temperature, diameter) / mass;
+}
+
+double elastic_mu(double mass, double temperature, double diameter, double number_density) {
+  return temperature * elastic_conductivity(mass, temperature, diameter) / number_density;
+}
+
+double scaled_elastic_shear_viscosity(double K, double T) {
+  return 0.25 * K * std::sqrt(T);
+}
+
+double scaled_elastic_conductivity(double K, double T) {
+  return K * std::sqrt(T);
+}
+
+double scaled_elastic_mu(double K, double n, double T) {
+  return T * scaled_elastic_conductivity(K, T) / n;
+}
+
+ScaledTransportUnits scaled_transport_units(double number_density, double box_length) {
+  // stress n0 T0 = eta dv/dx with v in sqrt(T0/m), x in Lx; heat flux n0 T0 sqrt(T0/m) =
+  // kappa dT/dx with T in T0 = mu dn/dx with n in n0 (m = T0 = 1).
+  return {number_density * box_length, number_density * box_length, box_length};
+}
+
+const std::vector<TransportCoefficient>& transport_coefficients() {
+  static const std::vector<TransportCoefficient> table = {
+      {"shear_viscosity", {"hydro.viscosity_factor"}, &relative_shear_viscosity},
+      {"effective_conductivity",
+       {"hydro.conductivity_factor", "hydro.mu_factor"},
+       &relative_effective_conductivity},
+      {"conductivity", {"hydro.conductivity_factor"}, &relative_conductivity},
+      {"mu", {"hydro.mu_factor"}, &relative_mu},
+  };
+  return table;
+}
+
+std::vector<std::string> transport_coefficient_names() {
+  std::vector<std::string> names;
+  for (const auto& c : transport_coefficients()) names.push_back(c.name);
+  return names;
+}
+
+const TransportCoefficient& transport_coefficient(const std::string& name) {
+  std::string known;
+  for (const auto& c : transport_coefficients()) {
+    if (c.name == name) return c;
+    known += (known.empty() ? "" : ", ") + c.name;
+  }
+  throw std::invalid_argument("unknown transport coefficient \"" + name + "\" (known: " + known +
+                              ")");
+}
+
+}  // namespace granvv::compare

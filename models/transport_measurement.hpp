@@ -1,0 +1,41 @@
+#pragma once
+// A transport coefficient measured from a scene's particle ensemble (docs/physics.md §14): the
+// k = 1 amplitude of the scene's field in every member (compare/mode_amplitudes.hpp), the hydro
+// run with the coefficient's factors at a grid of values, F fitted to the particles with its
+// jackknife error and chi^2 (compare/transport_factor_fit.hpp), and every value relative to
+// the elastic dilute coefficient of hard disks (compare/transport_coefficients.hpp).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compare/transport_factor_fit.hpp"
+#include "models/compare_scene.hpp"
+
+namespace granvv::app {
+
+// The factors of compare.transport_factors = [].
+inline const std::vector<double> kDefaultTransportFactors = {0.5, 0.75, 1.0, 1.25, 1.5};
+
+struct TransportMeasurement {
+  std::string coefficient, field, phase;  // compare.transport, _field, _phase
+  std::string closure;                    // hydro.closure: F is a factor on its coefficient
+  std::vector<double> t;                  // the snapshots' scaled times (t[0]: the start)
+  compare::FactorGrid grid;               // the hydro's amplitudes at the factors
+  compare::FactorFit fit;
+  // F times the closure's value and its error, relative to the elastic dilute value.
+  double measured = 0.0, error = 0.0;
+  // Each closure of compare.closures with its value relative to the elastic dilute one, in
+  // that order (the first is hydro.closure's).
+  std::vector<std::pair<std::string, double>> closures;
+};
+
+// hydro: the comparison's hydro (aligned with the particles, from their t = 0 fields where the
+// case says so); closures: compare.closures. Runs the hydro once per factor of the grid, on the
+// particles' bins. Throws std::runtime_error when a hydro run of the grid fails or the snapshots
+// are too few to fit.
+TransportMeasurement measure_transport(const CompareScene::Transport& transport,
+                                       const std::vector<std::string>& closures,
+                                       const HydroScene& hydro, const MdScene& md,
+                                       const MdOutcome& md_out);
+
+}  // namespace granvv::app

@@ -1,0 +1,61 @@
+"""A transport coefficient measured from the particles (docs/physics.md §14): the k = 1 amplitude of
+the scene's field, the members' mean with its jackknife error, against the hydro's decay at the
+closure's coefficient (F = 1) and at the fitted factor F."""
+import matplotlib.pyplot as plt
+import numpy as np
+
+from .data import Skip, arr, num
+from .formatting import fmt
+from .registry import Drawn, figure
+from .style import CMP_FIELD_TEX, CMP_HYDRO, CMP_MD, T_UNIT
+
+
+@figure(file="cmp_transport.png", section="compare", anchor="cmp_transport",
+        title="Transport coefficients from the decay of a mode",
+        caption=("The k = 1 {phase} 2πx amplitude of {field} ({relative}): the mean over the "
+                 "particle members with its jackknife error (delete-one, over members), against the "
+                 "hydro's decay with the {closure} closure's coefficient (F = 1) and with it times the "
+                 "fitted factor F, each from the start amplitude that fits best. F is fitted to "
+                 "every snapshot at once, its error from refitting every leave-one-out ensemble "
+                 "(docs/physics.md §14)."))
+def fig_cmp_transport(run):
+    """Mode amplitude ± jackknife error against the hydro at F = 1 and the fitted F."""
+    groups = {name: G for name, G in (run.transport or {}).items() if G}
+    if not groups:
+        raise Skip("no transport measurement (compare.transport = \"none\")")
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.4 * len(groups), 3.2), layout="constrained",
+                             squeeze=False)
+    measured, fields, phases, closures = [], [], [], []
+    for ax, (name, G) in zip(axes[0], groups.items()):
+        t, a, e = arr(G, "t", 3), arr(G, "amplitude", 3), arr(G, "amplitude_error", 3)
+        unit, fitted = arr(G, "hydro_unit_factor", 3), arr(G, "hydro_fitted", 3)
+        if t is None or a is None or e is None:
+            raise Skip(f"/transport/{name} has no amplitudes")
+        attrs = G["attrs"]
+        F, dF = num(attrs.get("factor")), num(attrs.get("factor_error"))
+        closure, field = attrs.get("closure", "hydro"), attrs.get("field", "")
+        ax.errorbar(t, a, yerr=e, fmt="o", ms=3, color=CMP_MD, elinewidth=0.8, capsize=0,
+                    label="particles ± jackknife error")
+        if unit is not None and unit.size == t.size:
+            ax.plot(t, unit, color="0.4", lw=1.2, ls="--", label=f"{closure}, F = 1")
+        if fitted is not None and fitted.size == t.size:
+            ax.plot(t, fitted, color=CMP_HYDRO, lw=1.5, label=f"{closure}, F = {fmt(F, 3)} ± {fmt(dF, 2)}")
+        ax.set_title(name.replace("_", " "), fontsize=9)
+        ax.set_xlabel(T_UNIT)
+        ax.set_ylabel(f"k = 1 amplitude of {CMP_FIELD_TEX.get(field, field)}")
+        ax.legend(fontsize=7, loc="best")
+        block = run.transport_summary(name) or {}
+        measured.append((f"{name}: measured / elastic dilute value",
+                         f"{fmt(num(block.get('measured')))} ± {fmt(num(block.get('error')))}", None))
+        chi2, dof = num(attrs.get("chi2")), num(attrs.get("degrees_of_freedom"))
+        measured.append((f"{name}: factor F on the {closure} closure's; χ² / degrees of freedom",
+                         f"{fmt(F)} ± {fmt(dF)}; {fmt(chi2, 3)} / {fmt(dof)}", None))
+        for other, value in (block.get("closures") or {}).items():
+            measured.append((f"{name}: {other} closure / elastic dilute value", fmt(num(value)), None))
+        fields.append(CMP_FIELD_TEX.get(field, field))
+        phases.append(attrs.get("phase", ""))
+        closures.append(closure)
+    relative = "relative to its box mean" if any(f in ("$n$", "$T$") for f in fields) else "as it is"
+    values = {"field": ", ".join(fields), "phase": "/".join(sorted(set(phases))),
+              "closure": ", ".join(sorted(set(closures))), "relative": relative}
+    return Drawn(fig, measured, caption_values=values)

@@ -1,0 +1,144 @@
+// A transport measurement through the real CLI (docs/physics.md §14, docs/outputs.md): a small
+// shear wave of event-driven disks (4 members of about 280 disks, to t = 444, a few seconds)
+// writes summary.json's transport block with every value finite and each compared closure's
+// value, and results.h5's /transport group with the fit's curves; bad compare.transport keys are
+// refused with one line naming the key.
+#include <H5Cpp.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "fields/hdf5_datasets.hpp"
+#include "support/cli_runner.hpp"
+
+namespace granvv::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A k = 1 shear wave v_y = 0.1 sin 2 pi x in a cooling gas at r = 0.9 (K = 0.08, phi = 0.02).
+constexpr const char* kShearWave = R"toml(
+[case]
+name = "small_shear_wave"
+[physics]
+K = 0.08
+q = 0.05
+[initial]
+type = "expression"
+transverse_velocity = "0.1*sin(2*pi*x)"
+[hydro]
+transverse_velocity = true
+cells = 100
+[md]
+enabled = true
+engine = "event_driven"
+area_fraction = 0.02
+box_width = 20.0
+seed = 3
+ensemble = 4
+t_end = 444.0
+sample_interval = 47.0
+output_times = [0.0, 111.0, 222.0, 333.0, 444.0]
+bins = 16
+checkpoint_interval = 0.0
+[compare]
+enabled = true
+closures = ["dilute", "enskog"]
+transport = "shear_viscosity"
+transport_field = "v_y"
+transport_phase = "sin"
+)toml";
+
+fs::path write_case(const fs::path& dir) {
+  const fs::path file = dir / "small_shear_wave.toml";
+  std::ofstream(file) << kShearWave;
+  return file;
+}
+
+TEST(TransportCli, ShearWaveWritesTheTransportBlockAndGroup) {
+  const fs::path dir = fresh_directory("transport-run");
+  const fs::path out = dir / "out";
+  const CliStreams r = run_cli_streams("run " + shell_quote(write_case(dir).string()) +
+                                       " --quiet --no-report --out " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = json::parse(read_text(out / "summary.json"));
+  ASSERT_TRUE(s["transport"].is_object()) << s.dump(2);
+  const json& eta = s["transport"]["shear_viscosity"];
+  for (const char* key : {"measured", "error", "factor", "factor_error", "chi2"}) {
+    ASSERT_TRUE(eta[key].is_number()) << key << ": " << eta.dump(2);
+    EXPECT_TRUE(std::isfinite(eta[key].get<double>())) << key;
+  }
+  EXPECT_GT(eta["error"].get<double>(), 0.0);
+  EXPECT_EQ(eta["closure"], "dilute");
+  EXPECT_EQ(eta["field"], "v_y");
+  EXPECT_EQ(eta["degrees_of_freedom"], 3);  // 5 snapshots: 4 after the start, one parameter
+  // The dilute closure's eta is the elastic dilute value, so its F is the measured value.
+  EXPECT_EQ(eta["closures"]["dilute"].get<double>(), 1.0);
+  EXPECT_GT(eta["closures"]["enskog"].get<double>(), 0.9);
+  EXPECT_DOUBLE_EQ(eta["measured"].get<double>(), eta["factor"].get<double>());
+  EXPECT_DOUBLE_EQ(eta["closure_deviation_sigmas"]["dilute"].get<double>(),
+                   (1.0 - eta["measured"].get<double>()) / eta["error"].get<double>());
+
+  H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
+  const H5::Group g = h5.openGroup("/transport/shear_viscosity");
+  for (const char* name : {"t", "amplitude", "amplitude_error", "residual_error",
+                           "hydro_unit_factor", "hydro_fitted"}) {
+    const auto a = h5::read_doubles(g, name);
+    ASSERT_EQ(a.values.size(), 5u) << name;
+    for (double v : a.values) EXPECT_TRUE(std::isfinite(v)) << name;
+  }
+  const auto grid = h5::read_doubles(g, "hydro_grid");
+  EXPECT_EQ(grid.shape, (std::vector<hsize_t>{5, 5}));  // the default 5 factors x 5 snapshots
+  EXPECT_EQ(h5::read_double_attribute(g, "factor"), eta["factor"].get<double>());
+  fs::remove_all(dir);
+}
+
+// Fitting from snapshot 3 of 5 leaves two snapshots: the measurement says why it was not made,
+// with null values, and the run is otherwise complete (exit 0).
+TEST(TransportCli, TooFewSnapshotsLeaveTheRunAndSayWhy) {
+  const fs::path dir = fresh_directory("transport-few");
+  const fs::path out = dir / "out";
+  const CliStreams r = run_cli_streams(
+      "run " + shell_quote(write_case(dir).string()) +
+      " --quiet --no-report --set compare.transport_start=3 --set md.ensemble=2 --out " +
+      shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = json::parse(read_text(out / "summary.json"));
+  const json& eta = s["transport"]["shear_viscosity"];
+  EXPECT_TRUE(eta["measured"].is_null()) << eta.dump(2);
+  EXPECT_TRUE(eta["error"].is_null());
+  EXPECT_NE(eta["failure"].get<std::string>().find("compare.transport_start"), std::string::npos);
+  EXPECT_EQ(s["status"], "ok");
+  fs::remove_all(dir);
+}
+
+TEST(TransportCli, BadKeysExitTwoWithOneLineNamingTheKey) {
+  const fs::path dir = fresh_directory("transport-bad");
+  const fs::path file = write_case(dir);
+  const std::pair<const char*, const char*> bad[] = {
+      {"compare.transport=\"bulk_viscosity\"", "compare.transport"},
+      {"compare.transport_field=\"w\"", "compare.transport_field"},
+      {"compare.transport_phase=\"tan\"", "compare.transport_phase"},
+      {"compare.transport_factors=[1.0]", "compare.transport_factors"},
+      {"compare.transport_factors=[1.0, 0.5]", "compare.transport_factors"},
+  };
+  for (const auto& [set, key] : bad) {
+    SCOPED_TRACE(set);
+    const CliStreams r =
+        run_cli_streams("run " + shell_quote(file.string()) + " --set " + shell_quote(set) +
+                        " --out " + shell_quote((dir / "out").string()));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    EXPECT_NE(r.err.find(key), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace granvv::testing
