@@ -238,6 +238,10 @@ json sweep_point(const SweepOptions& options, const fs::path& dir, const SweptKe
                                     ? summary["hydro"]["wall_seconds"]
                                     : json(nullptr);
   point["compare"] = value_or_null(summary, "compare");
+  // The coefficients measured from the particles, where the scene measures them (the sweep
+  // page draws them against the swept key); absent otherwise, so other sweeps are unchanged.
+  if (summary.is_object() && summary.contains("transport"))
+    point["transport"] = summary["transport"];
   return point;
 }
 

@@ -181,6 +181,7 @@ void EventDrivenEngine::set_up(const ParticleSample& sample) {
   start(sample.x, sample.v, 0.0);
   tally_.clear();
   events_ = collisions_ = crossings_ = changed_ = tc_elastic_ = speed_elastic_ = ordered_at_ = 0;
+  stops_ = 0;
   ++runs_;
 }
 
@@ -434,6 +435,7 @@ double EventDrivenEngine::advance_to(double t) {
   }
   t_ = t;
   const double interval = t - begin;
+  if (interval > 0.0) ++stops_;
   tally_.finish(interval);
   virial_.t_begin = begin;
   virial_.t_end = t;
@@ -554,6 +556,7 @@ EngineState EventDrivenEngine::save_state(bool with_particles) {
   if (with_particles && !disks_.empty()) state.particles = gather_frame();
   state.numbers = {{"t", t_},
                    {"events", double(events_)},
+                   {"stops", double(stops_)},
                    {"collisions", double(collisions_)},
                    {"crossings", double(crossings_)},
                    {"changed", double(changed_)},
@@ -592,6 +595,8 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   collisions_ = std::llround(get("collisions"));
   crossings_ = std::llround(get("crossings"));
   changed_ = std::llround(get("changed"));
+  // Absent from checkpoints written before stops were counted, whose frames have the events.
+  stops_ = number.count("stops") ? std::llround(get("stops")) : 0;
   // Absent from checkpoints written before the TC rule existed.
   tc_elastic_ = number.count("tc_elastic") ? std::llround(get("tc_elastic")) : 0;
   all_tc_elastic_ = number.count("all_tc_elastic") ? std::llround(get("all_tc_elastic")) : 0;

@@ -73,6 +73,10 @@ class EventDrivenEngine final : public ParticleEngine {
   // collisions: inelastic collapse, which the collapse rule should have prevented.
   double advance_to(double t) override;
   long long steps() const override { return events_; }  // events of this run
+  // The events and the stops: a stop, which brings every disk to its time, is an event of the
+  // run of its own, so that a segment without a collision or a cell crossing (a short sample
+  // interval in a cold, dilute gas) still moves the H5MD step on.
+  long long frame_step() const override { return events_ + stops_; }
 
   // Every rank holds and moves all disks (the same dynamics on each); rank 0 hands them to the
   // coarse-grainer, the others none.
@@ -181,6 +185,7 @@ class EventDrivenEngine final : public ParticleEngine {
   long long events_ = 0, collisions_ = 0, crossings_ = 0, changed_ = 0, tc_elastic_ = 0,
             speed_elastic_ = 0;
   long long ordered_at_ = 0;  // events_ when the disks were last put in cell order
+  long long stops_ = 0;       // advance_to calls that moved time (frame_step)
   // Over every run.
   int runs_ = 0;
   long long all_events_ = 0, all_collisions_ = 0, all_crossings_ = 0, all_changed_ = 0,

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "fields/field_series.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/h5md_frames.hpp"
 #include "md_bridge/moment_reduction.hpp"
@@ -89,13 +90,21 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   if (!spec.h5md_path.empty()) {
     frames = std::make_unique<H5mdFrames>(
         H5mdFrames::Spec{spec.h5md_path, scene.particles, lx, ly, spec.creator_version},
-        engine.comm(), resume ? result.steps : -1);
+        engine.comm(), resume ? engine.frame_step() : -1);
   }
   H5mdWriter* h5md = frames ? frames->observables() : nullptr;
+  // The sample, frame and output clocks are sums kept apart, so a frame or an output time due
+  // with a sample may differ from it by rounding; such times are one stop, with one
+  // observation. A stop of its own would be a segment without an event (the event-driven
+  // engine has no time step): the same step twice in the H5MD observables, and a sample of a
+  // vanishing interval.
+  auto due_by = [&](double due, double time) {
+    return due <= time + 0.5 * engine.time_resolution() || fields::same_time(time, due);
+  };
   auto write_frame = [&](double time) {
     if (spec.snapshot_interval <= 0.0 || !frames) return;
-    if (time < next_frame - 0.5 * engine.time_resolution()) return;
-    frames->append_frame(result.steps, time, engine);
+    if (!due_by(next_frame, time)) return;
+    frames->append_frame(engine.frame_step(), time, engine);
     next_frame += spec.snapshot_interval;
   };
 
@@ -143,10 +152,11 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
       result.fields.snapshots.push_back(std::move(f));
     }
     if (h5md) {
-      h5md->append_observable("thermal_energy", result.steps, t, e.thermal);
-      h5md->append_observable("kinetic_energy_x", result.steps, t, e.kinetic_macro_x);
-      h5md->append_observable("kinetic_energy_y", result.steps, t, e.kinetic_macro_y);
-      h5md->append_observable("total_energy", result.steps, t, e.kinetic_total);
+      const long long step = engine.frame_step();
+      h5md->append_observable("thermal_energy", step, t, e.thermal);
+      h5md->append_observable("kinetic_energy_x", step, t, e.kinetic_macro_x);
+      h5md->append_observable("kinetic_energy_y", step, t, e.kinetic_macro_y);
+      h5md->append_observable("total_energy", step, t, e.kinetic_total);
     }
     write_frame(t);
   };
@@ -175,11 +185,11 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
     double target = std::min(spec.t_end, t + spec.sample_interval);
-    if (spec.snapshot_interval > 0.0 && !spec.h5md_path.empty())
+    if (spec.snapshot_interval > 0.0 && !spec.h5md_path.empty() &&
+        !fields::same_time(target, next_frame))
       target = std::min(target, next_frame);
     bool snapshot = false;
-    if (next_output < outputs.size() &&
-        outputs[next_output] <= target + 0.5 * engine.time_resolution()) {
+    if (next_output < outputs.size() && due_by(outputs[next_output], target)) {
       target = outputs[next_output];
       snapshot = true;
     }

@@ -154,8 +154,12 @@ class ParticleEngine {
   // The engine's own adjustments after a segment has been sampled (LAMMPS: a softer contact
   // as the gas cools).
   virtual void between_segments() {}
-  // The engine's step count in this run (time steps, or events): the H5MD step.
+  // The engine's step count in this run (time steps, or events): summary.json's md.steps.
   virtual long long steps() const = 0;
+  // The step of a particle frame or an observation at the present time (the H5MD step, which
+  // must increase from one frame to the next): it grows with every advance_to that moves time.
+  // An engine whose every advance makes a step has its step count.
+  virtual long long frame_step() const { return steps(); }
 
   // This rank's particles, for the coarse-grainer.
   virtual LocalParticles local_particles() = 0;

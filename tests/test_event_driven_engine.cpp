@@ -2,7 +2,7 @@
 // kernel, the exact conservation of the elastic gas without overlaps, Enskog's collision
 // frequency and collisional pressure, relaxation to a Maxwellian, Haff's law at r = 0.9, a run
 // continued from its checkpoint, and md_haff through the real CLI with md.engine =
-// "event_driven".
+// "event_driven", also with frames due at the samples and samples closer than the events.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +15,7 @@
 #include <variant>
 
 #include "compare/haff_fit.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "hydro/enskog_factors.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "md_bridge/event_driven_engine.hpp"
@@ -417,6 +418,43 @@ TEST(EventDrivenCli, MdHaffRunsWithTheEventDrivenEngine) {
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("md.engine"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find("event_driven"), std::string::npos) << bad.output;
+}
+
+// Frames every third sample (0.003 = 3 x 0.001: the sums of the two clocks differ by rounding)
+// and samples closer than the events (1000 stops, a few hundred events): every frame shares the
+// observation of its sample, no stop is added for it, and the H5MD step, the events and the
+// stops, increases at every observation (the writer refuses a step that does not).
+TEST(EventDrivenCli, FramesDueAtSamplesShareTheirObservationAndStepsIncrease) {
+  const auto dir = granvv::testing::fresh_directory("event-driven-frames-at-samples");
+  const auto r = granvv::testing::run_cli(
+      "run md_haff --quiet --no-report --set md.engine=event_driven --set md.particles=500 "
+      "--set md.box_width=20 --set md.ensemble=1 --set md.t_end=1 --set md.sample_interval=0.001 "
+      "--set md.snapshot_interval=0.003 --set 'md.output_times=[0, 0.5, 1]' "
+      "--set compare.enabled=false --out " +
+      dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(granvv::testing::read_text(dir / "summary.json"));
+  const double events = s["md"]["events"].get<double>();
+  const H5::H5File file((dir / "particles.h5").string(), H5F_ACC_RDONLY);
+  const H5::Group observed = file.openGroup("/observables/thermal_energy");
+  const H5::Group frames = file.openGroup("/particles/all/position");
+  const auto steps = h5::read_doubles(observed, "step").values;
+  const auto times = h5::read_doubles(observed, "time").values;
+  const auto frame_steps = h5::read_doubles(frames, "step").values;
+  const auto frame_times = h5::read_doubles(frames, "time").values;
+  ASSERT_EQ(times.size(), 1001u);  // the samples at 0, 0.001, ..., 1 and no stop between them
+  EXPECT_LT(events, 1000.0);       // so some stops had no event
+  for (std::size_t i = 1; i < times.size(); ++i) {
+    EXPECT_GT(steps[i], steps[i - 1]) << i;
+    EXPECT_NEAR(times[i] - times[i - 1], 0.001, 1e-9) << i;
+  }
+  EXPECT_EQ(steps.back(), events + 1000.0);
+  ASSERT_EQ(frame_times.size(), 334u);  // 0, 0.003, ..., 0.999
+  for (std::size_t k = 0; k < frame_times.size(); ++k) {
+    EXPECT_EQ(frame_times[k], times[3 * k]) << k;
+    EXPECT_EQ(frame_steps[k], steps[3 * k]) << k;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

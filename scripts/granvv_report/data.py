@@ -357,7 +357,8 @@ def sweep_points(run):
             link = urllib.parse.quote(f"{d}/report.html", safe="/=,.-_")
         out.append({"i": i, "value": num(p.get("value")), "dir": d, "status": p.get("status"),
                     "exit_code": p.get("exit_code"), "md": p.get("md") if isinstance(p.get("md"), dict) else {},
-                    "cool": rows.get(i), "link": link, "hydro_wall": num(p.get("hydro_wall_seconds"))})
+                    "cool": rows.get(i), "link": link, "hydro_wall": num(p.get("hydro_wall_seconds")),
+                    "transport": p.get("transport") if isinstance(p.get("transport"), dict) else {}})
     return out
 
 
@@ -381,6 +382,39 @@ def sweep_cooling(run):
     d["points"] = pts
     return d
 
+
+
+# The coefficients of summary.json's "transport" block, in the order a page shows them: each is
+# {"measured", "error", "closures": {closure: value}}, divided by the elastic dilute hard-disk value.
+TRANSPORT_COEFFICIENTS = ("shear_viscosity", "effective_conductivity", "conductivity", "mu")
+
+
+def sweep_transport(run):
+    """The points' transport blocks, coefficient by coefficient, over the points sorted by r (else
+    by the swept value): {"restitution", "value", "points", "coefficients": {name: {"measured",
+    "error", "closures": {closure: array}}}}, NaN where a point lacks a number. Skip if no point
+    measured a coefficient."""
+    pts = [p for p in sweep_points(run)
+           if any(isinstance(p["transport"].get(c), dict) for c in TRANSPORT_COEFFICIENTS)]
+    if not pts:
+        raise Skip("no point measured a transport coefficient (no transport block in its summary.json)")
+    pts.sort(key=lambda p: (num(p["md"].get("restitution")) or p["value"] or 0.0))
+
+    def column(values):
+        return np.array([v if v is not None else np.nan for v in values], dtype=float)
+
+    coefficients = {}
+    for c in TRANSPORT_COEFFICIENTS:
+        blocks = [p["transport"].get(c) if isinstance(p["transport"].get(c), dict) else {} for p in pts]
+        if not any(blocks):
+            continue
+        names = sorted({n for b in blocks if isinstance(b.get("closures"), dict) for n in b["closures"]})
+        coefficients[c] = {
+            "measured": column([num(b.get("measured")) for b in blocks]),
+            "error": column([num(b.get("error")) for b in blocks]),
+            "closures": {n: column([num(get(b, "closures", n)) for b in blocks]) for n in names}}
+    return {"restitution": column([num(p["md"].get("restitution")) for p in pts]),
+            "value": column([p["value"] for p in pts]), "points": pts, "coefficients": coefficients}
 
 
 class Run:

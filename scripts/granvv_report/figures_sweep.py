@@ -1,13 +1,13 @@
 """Figures of a sweep (sweep.json of `granvv sweep`, the cooling analysis of compare/cooling_sweep.hpp):
 s1 t0(r), s2 zeta against 1 - r^2 with the fitted power, s3 theory against the measured rate, s4 cost
-per point. Times in sigma sqrt(m/T0), cooling rates zeta = 2/t0 in sqrt(T0/m)/sigma."""
+per point, s5 the transport coefficients measured from the particles against every closure's. Times in sigma sqrt(m/T0), cooling rates zeta = 2/t0 in sqrt(T0/m)/sigma."""
 import matplotlib
 import matplotlib.pyplot as plt
 import matplotlib.ticker
 import numpy as np
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
-from .data import Skip, get, num, sweep_cooling, sweep_points
+from .data import Skip, get, num, sweep_cooling, sweep_points, sweep_transport
 from .formatting import fmt, pct, tex_num, verdict
 from .registry import Drawn, figure
 from .style import SWEEP_T_UNIT, SWEEP_Z_UNIT, plain_log_ticks, positive, power_scale
@@ -259,3 +259,64 @@ def fig_sweep_cost(run):
                                                    f"{fmt(num(np.nanmax(asr)) if np.isfinite(asr).any() else None, 3)}"), None),
     ]
     return Drawn(fig, measured)
+
+
+# Each coefficient's axis label, over its elastic dilute hard-disk value (docs/outputs.md, transport).
+TRANSPORT_LABELS = {"shear_viscosity": r"$\eta/\eta_0$",
+                    "effective_conductivity": r"$(\kappa - \mu n/T)/\kappa_0$",
+                    "conductivity": r"$\kappa/\kappa_0$",
+                    "mu": r"$\mu/\mu_0$"}
+TRANSPORT_TITLES = {"shear_viscosity": "shear viscosity",
+                    "effective_conductivity": "conductivity a pressure-balanced mode sees",
+                    "conductivity": "heat conductivity", "mu": "inelastic heat-flux coefficient"}
+TRANSPORT_NAMES = {"shear_viscosity": "η/η<sub>0</sub>", "effective_conductivity": "(κ − μn/T)/κ<sub>0</sub>",
+                   "conductivity": "κ/κ<sub>0</sub>", "mu": "μ/μ<sub>0</sub>"}
+
+
+@figure(file="s5_transport.png", section="sweep", anchor="sweep_transport",
+        title="Transport coefficients against r: particles and closures",
+        caption=("Each coefficient measured from the particles (the decay of the scene's k = 1 mode matched "
+                 "to the hydro's, with the standard error from the members' scatter), divided by the elastic "
+                 "dilute hard-disk value η<sub>0</sub> = √(mT/π)/(2σ), κ<sub>0</sub> = 4η<sub>0</sub>/m, "
+                 "μ<sub>0</sub> = Tκ<sub>0</sub>/n, beside every closure's value at the same point. Inelastic "
+                 "kinetic theory (Brey, Dufty, Kim &amp; Santos 1998; Garzó &amp; Dufty 1999) gives a second "
+                 "heat-flux coefficient μ that grows from 0 as r falls, so that a pressure-balanced mode "
+                 "sees κ − μn/T, below κ."))
+def fig_sweep_transport(run):
+    """s5: each measured coefficient (error bars) against r, with each closure's curve."""
+    d = sweep_transport(run)
+    x, xlabel, smooth = sweep_r_axis(run, d)
+    at = "r" if smooth else (run.sweep("key") or "value")
+    coefficients = d["coefficients"]
+    names = sorted({n for c in coefficients.values() for n in c["closures"]})
+    colour = {n: f"C{i % 10}" for i, n in enumerate(names)}
+    fig, axes = plt.subplots(1, len(coefficients), figsize=(5.4 * len(coefficients), 4.6), layout="constrained",
+                             squeeze=False, sharex=True)
+    measured = []
+    for ax, (key, c) in zip(axes[0], coefficients.items()):
+        ax.axhline(1.0, color="0.5", lw=0.8, ls=":", label="elastic dilute value")
+        for n in names:
+            y = c["closures"].get(n)
+            if y is not None and np.isfinite(y).any():
+                ax.plot(x, y, color=colour[n], marker="s", ms=4, lw=1.3, label=f"closure {n}")
+        ok = np.isfinite(c["measured"])
+        ax.errorbar(x[ok], c["measured"][ok], yerr=np.nan_to_num(c["error"][ok]), fmt="o", color="k", ms=6,
+                    capsize=3, lw=1.2, zorder=5, label="particles ± standard error")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(TRANSPORT_LABELS.get(key, key))
+        ax.set_title(TRANSPORT_TITLES.get(key, key))
+        ax.legend(loc="best", fontsize=8)
+        for i, p in enumerate(d["points"]):
+            m, e = num(c["measured"][i]), num(c["error"][i])
+            sides = []
+            for n in names:
+                v = num(c["closures"][n][i])
+                sigmas = (v - m) / e if None not in (v, m, e) and e > 0 else None
+                sides.append(f"{escape(n)} {fmt(v, 4)}" + (f" ({fmt(sigmas, 2)}σ)" if sigmas is not None else ""))
+            measured.append((f"{at} = {fmt(num(x[i]))}: {TRANSPORT_NAMES.get(key, key)} measured; each closure "
+                             "(its distance in σ)",
+                             Markup(f"{fmt(m, 4)} ± {fmt(e, 2)}; " + ", ".join(sides)), None))
+    return Drawn(fig, measured,
+                 note=Markup("The values are the points' own (summary.json transport blocks, copied into "
+                             "sweep.json); a closure's distance in σ is (closure − measured)/error."))
+
