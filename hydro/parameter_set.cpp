@@ -8,8 +8,7 @@ bool ParameterSpec::operator==(const ParameterSpec& o) const {
   return name == o.name && default_value == o.default_value && range.min == o.range.min &&
          range.max == o.range.max && range.min_exclusive == o.range.min_exclusive &&
          range.max_exclusive == o.range.max_exclusive && range.choices == o.range.choices &&
-         range.strictly_increasing == o.range.strictly_increasing &&
-         help == o.help;
+         range.strictly_increasing == o.range.strictly_increasing && help == o.help;
 }
 
 ParameterSet& ParameterSet::set(const std::string& name, ParameterValue value) {
