@@ -202,7 +202,9 @@ TEST(AtlasCli, SingleModeLadderAndItsPage) {
   EXPECT_TRUE(a["reference"]["converged_to_tolerance"].get<bool>());
   // Flow by inertia has crossing times but no temperature; the Haff ODE cannot follow the mode.
   ASSERT_TRUE(a["recommendation"]["model"].is_string());
-  EXPECT_EQ(a["recommendation"]["model"], "hydro/dilute");
+  // A hydro family: dilute and garzo_dufty cost the same cell-steps and are both adequate here,
+  // so which of them is cheapest depends on their measured wall times.
+  EXPECT_EQ(a["recommendation"]["model"].get<std::string>().rfind("hydro/", 0), 0u);
   bool inertia_ran = false;
   for (const auto& run : a["runs"]) {
     if (run["model"] != "flow_by_inertia") continue;
