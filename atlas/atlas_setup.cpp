@@ -75,6 +75,7 @@ AtlasSetup atlas_setup(const std::string& case_name, const std::vector<std::stri
   scene.config = std::make_shared<const CaseConfig>(
       CaseConfig::from_string(scene.source.text, scene.source.origin, scene.sets));
   const CaseConfig& config = *scene.config;
+  refuse_keys_of_models_not_run(config, RunningCommand::atlas);
   const HydroScene hydro = hydro_scene_from(config);
   scene.case_hydro = std::make_shared<const HydroScene>(hydro);
   scene.name = config.name();

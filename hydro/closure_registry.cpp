@@ -32,9 +32,8 @@ const std::map<std::string, RegisteredClosure>& closure_registry() {
   static const std::map<std::string, RegisteredClosure> registry{
       {"dilute",
        {[](const ClosureParameters& p) {
-          const auto phi0 = p.extra.find(EnskogClosure::kAreaFractionParameter);
           return std::make_unique<DiluteClosure>(p.physics, p.cooling,
-                                                 phi0 == p.extra.end() ? 0.0 : phi0->second);
+                                                 EnskogClosure::area_fraction_in(p));
         },
         {},
         {},

@@ -2,29 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
 #include "hydro/enskog_factors.hpp"
 #include "hydro/haff.hpp"
+#include "hydro/number_text.hpp"
 
 namespace granvv::hydro {
-
-namespace {
-
-std::string format(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
-double area_fraction_of(const ClosureParameters& params) {
-  const auto it = params.extra.find(EnskogClosure::kAreaFractionParameter);
-  return it == params.extra.end() ? 0.0 : it->second;
-}
-
-}  // namespace
 
 EnskogClosure::EnskogClosure(const Physics& physics, double area_fraction, CoolingRate cooling,
                              const InelasticTransport& transport)
@@ -39,22 +24,27 @@ EnskogClosure::EnskogClosure(const Physics& physics, double area_fraction, Cooli
     : EnskogClosure(physics, area_fraction, cooling, InelasticTransport{}) {
   if (const auto problem =
           parameter_problem({physics, {{kAreaFractionParameter, area_fraction}}})) {
-    throw std::invalid_argument("enskog closure: area fraction " + format(area_fraction) + ": " +
-                                problem->reason);
+    throw std::invalid_argument("enskog closure: area fraction " + number_text(area_fraction) +
+                                ": " + problem->reason);
   }
 }
 
+double EnskogClosure::area_fraction_in(const ClosureParameters& params) {
+  const auto it = params.extra.find(kAreaFractionParameter);
+  return it == params.extra.end() ? 0.0 : it->second;
+}
+
 std::unique_ptr<Closure> EnskogClosure::make(const ClosureParameters& params) {
-  return std::make_unique<EnskogClosure>(params.physics, area_fraction_of(params), params.cooling);
+  return std::make_unique<EnskogClosure>(params.physics, area_fraction_in(params), params.cooling);
 }
 
 std::optional<ClosureParameterProblem> EnskogClosure::parameter_problem(
     const ClosureParameters& params) {
-  const double phi0 = area_fraction_of(params);
+  const double phi0 = area_fraction_in(params);
   if (phi0 > 0.0 && phi0 < enskog::kFreezingAreaFraction) return std::nullopt;
   return ClosureParameterProblem{kAreaFractionParameter,
                                  "the enskog closure needs the mean area fraction phi0 in (0, " +
-                                     format(enskog::kFreezingAreaFraction) +
+                                     number_text(enskog::kFreezingAreaFraction) +
                                      "), below the freezing of hard disks"};
 }
 
@@ -160,9 +150,9 @@ std::string freezing_problem(double area_fraction, const std::vector<double>& n,
     if (n[i] > n[densest]) densest = i;
   }
   if (n.empty() || area_fraction * n[densest] < enskog::kFreezingAreaFraction) return {};
-  return "the area fraction phi0 n = " + format(area_fraction * n[densest]) + " in cell " +
+  return "the area fraction phi0 n = " + number_text(area_fraction * n[densest]) + " in cell " +
          std::to_string(densest) + " reached the freezing fraction " +
-         format(enskog::kFreezingAreaFraction) + " of hard disks, past which the " + closure +
+         number_text(enskog::kFreezingAreaFraction) + " of hard disks, past which the " + closure +
          " closure does not apply";
 }
 

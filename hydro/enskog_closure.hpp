@@ -30,6 +30,8 @@ class EnskogClosure : public Closure {
  public:
   // The parameter it reads from ClosureParameters::extra.
   static constexpr const char* kAreaFractionParameter = "area_fraction";
+  // physics.area_fraction as the parameters carry it (0 when not given: the dilute gas).
+  static double area_fraction_in(const ClosureParameters& params);
 
   // area_fraction phi0 in (0, kFreezingAreaFraction) (else std::invalid_argument).
   EnskogClosure(const Physics& physics, double area_fraction, CoolingRate cooling);

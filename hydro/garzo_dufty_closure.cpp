@@ -1,27 +1,11 @@
 #include "hydro/garzo_dufty_closure.hpp"
 
-#include <cstdio>
 #include <stdexcept>
 
 #include "hydro/enskog_factors.hpp"
+#include "hydro/number_text.hpp"
 
 namespace granvv::hydro {
-
-namespace {
-
-std::string format(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
-// physics.area_fraction, shared with the Enskog closure (0: not given, the dilute gas).
-double area_fraction_of(const ClosureParameters& params) {
-  const auto it = params.extra.find(EnskogClosure::kAreaFractionParameter);
-  return it == params.extra.end() ? 0.0 : it->second;
-}
-
-}  // namespace
 
 GarzoDuftyClosure::GarzoDuftyClosure(const Physics& physics, double area_fraction,
                                      CoolingRate cooling)
@@ -43,8 +27,8 @@ GarzoDuftyClosure::GarzoDuftyClosure(const Physics& physics, double area_fractio
       reduced_(reduced) {}
 
 std::unique_ptr<Closure> GarzoDuftyClosure::make(const ClosureParameters& params) {
-  return std::make_unique<GarzoDuftyClosure>(params.physics, area_fraction_of(params),
-                                             params.cooling);
+  return std::make_unique<GarzoDuftyClosure>(
+      params.physics, EnskogClosure::area_fraction_in(params), params.cooling);
 }
 
 std::optional<ClosureParameterProblem> GarzoDuftyClosure::parameter_problem(
@@ -57,15 +41,15 @@ std::optional<ClosureParameterProblem> GarzoDuftyClosure::parameter_problem(
   if (!(reduced.conductivity - reduced.mu > 0.0)) {
     return ClosureParameterProblem{
         "q", "the garzo_dufty closure's conduction at pressure balance kappa* - mu* = " +
-                 format(reduced.conductivity - reduced.mu) + " at r = " + format(r) +
+                 number_text(reduced.conductivity - reduced.mu) + " at r = " + number_text(r) +
                  " is not positive (first Sonine approximation; it is for r > 0.345)"};
   }
-  const double phi0 = area_fraction_of(params);
+  const double phi0 = EnskogClosure::area_fraction_in(params);
   if (phi0 >= 0.0 && phi0 < enskog::kFreezingAreaFraction) return std::nullopt;
   return ClosureParameterProblem{
       EnskogClosure::kAreaFractionParameter,
       "the garzo_dufty closure needs the mean area fraction phi0 in [0, " +
-          format(enskog::kFreezingAreaFraction) +
+          number_text(enskog::kFreezingAreaFraction) +
           "), below the freezing of hard disks (0: the dilute gas)"};
 }
 

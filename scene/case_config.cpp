@@ -12,6 +12,8 @@
 #include <tuple>
 #include <type_traits>
 
+#include "hydro/closure.hpp"
+
 namespace granvv::app {
 
 namespace {
@@ -668,8 +670,8 @@ namespace {
 
 // The models of `selector` ("md.engine", "hydro.closure") that the case runs; nullopt when it
 // runs that part not at all.
-std::optional<std::vector<std::string>> models_run(const CaseConfig& c,
-                                                   const std::string& selector) {
+std::optional<std::vector<std::string>> models_run(const CaseConfig& c, const std::string& selector,
+                                                   RunningCommand command) {
   if (selector == "md.engine") {
     if (!c.boolean("md.enabled")) return std::nullopt;
     return std::vector<std::string>{c.string("md.engine")};
@@ -677,17 +679,22 @@ std::optional<std::vector<std::string>> models_run(const CaseConfig& c,
   if (!c.boolean("hydro.enabled")) return std::nullopt;
   std::vector<std::string> closures = {c.string("hydro.closure")};
   if (c.boolean("compare.enabled")) closures = c.strings("compare.closures");
+  if (command == RunningCommand::atlas) {
+    for (const std::string& name : hydro::closure_names()) {
+      if (hydro::closure_on_every_ladder(name)) closures.push_back(name);
+    }
+  }
   return closures;
 }
 
 }  // namespace
 
-void refuse_keys_of_models_not_run(const CaseConfig& c) {
+void refuse_keys_of_models_not_run(const CaseConfig& c, RunningCommand command) {
   for (const KeySpec& spec : case_schema()) {
     const auto owner = key_owner(spec.key);
     if (!owner || c.origin(spec.key) == "default") continue;
     if (c.value(spec.key) == spec.default_value.value) continue;
-    const auto run = models_run(c, owner->selector);
+    const auto run = models_run(c, owner->selector, command);
     if (!run || std::find(run->begin(), run->end(), owner->model) != run->end()) continue;
     // The key that says which models run: the selector, or the list of compared closures.
     const std::string chosen = owner->selector == "hydro.closure" && c.boolean("compare.enabled")

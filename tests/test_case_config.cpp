@@ -608,10 +608,11 @@ TEST(ModelKeys, TheSchemaHasEveryEnginesAndClosuresOwnKeysAsDeclared) {
 }
 
 // The refusal message of refuse_keys_of_models_not_run ("" if the case passes).
-std::string model_key_error(const std::string& text, const Sets& sets = {}) {
+std::string model_key_error(const std::string& text, const Sets& sets = {},
+                            RunningCommand command = RunningCommand::run) {
   const CaseConfig c = load(text, sets);
   try {
-    refuse_keys_of_models_not_run(c);
+    refuse_keys_of_models_not_run(c, command);
   } catch (const ConfigError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
@@ -658,6 +659,24 @@ TEST(ModelKeys, OwnKeysDefaultValuesAndPartsThatDoNotRunPass) {
   EXPECT_EQ(model_key_error(resolved.resolved_toml()), "");
   // No particle engine runs: [md] is not read, none of its keys is refused.
   EXPECT_EQ(model_key_error(kMinimalCase, {"md.max_overlap=0.02", "md.collapse_speed=1"}), "");
+}
+
+TEST(ModelKeys, TheAtlasRefusesTheKeysOfModelsItDoesNotRun) {
+  // The atlas runs the case's engine only: the other engine's key is refused as in a run.
+  EXPECT_NE(model_key_error(kEventDrivenCase, {"md.max_overlap=0.02"}, RunningCommand::atlas)
+                .find("md.max_overlap = 0.02: a key of md.engine = \"lammps\""),
+            std::string::npos);
+  // A closure that is on the atlas's ladder only where the case chooses it (the formula
+  // closure): its formulas are refused in a case with another closure, in the atlas as in a run.
+  for (const RunningCommand command : {RunningCommand::run, RunningCommand::atlas}) {
+    EXPECT_NE(model_key_error(kMinimalCase, {"hydro.viscosity=\"2*sqrt(T)\""}, command)
+                  .find("a key of hydro.closure = \"formula\""),
+              std::string::npos);
+  }
+  EXPECT_EQ(
+      model_key_error(kMinimalCase, {"hydro.closure=\"formula\"", "hydro.viscosity=\"2*sqrt(T)\""},
+                      RunningCommand::atlas),
+      "");
 }
 
 }  // namespace
