@@ -5,9 +5,14 @@
 // dilute one. Run: build/granvv_bench (add --benchmark_repetitions=5 for spread).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "hydro/batched_tridiagonal.hpp"
 #include "hydro/integrator.hpp"
 #include "hydro/periodic_tridiagonal.hpp"
 #include "scene/case_config.hpp"
@@ -76,6 +81,16 @@ void SingleModeAsShipped(benchmark::State& state) {
 }
 BENCHMARK(SingleModeAsShipped)->Unit(benchmark::kMillisecond);
 
+// The single mode at 2000 cells with the shipped step controls and output times (the scene of the
+// hydro throughput target in docs/performance.md); the counters use CPU time.
+void SingleModeShippedControls(benchmark::State& state) {
+  auto scene = granvv::app::hydro_scene_from(CaseConfig::from_file(
+      std::string(GRANVV_SOURCE_DIR) + "/cases/single_mode.toml",
+      {"convergence.cells=[]", "hydro.cells=" + std::to_string(state.range(0))}));
+  ToSingularity(state, scene);
+}
+BENCHMARK(SingleModeShippedControls)->Arg(2000)->Unit(benchmark::kMillisecond);
+
 // Paper Figs. 1-2, as shipped: 300 random modes cluster until the major peak's singularity.
 void ClusteringToSingularity(benchmark::State& state) {
   ToSingularity(state, scene_of("clustering", 0));
@@ -101,21 +116,82 @@ BENCHMARK_CAPTURE(IntegratorStep, dilute, std::vector<std::string>{})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(IntegratorStep, enskog, kEnskog)->Arg(2000)->Unit(benchmark::kMicrosecond);
 
-// One factorisation and solve of a periodic tridiagonal SPD system (LAPACK dpttrf/dpttrs and the
-// Sherman-Morrison corner).
+// A random SPD periodic system shaped like the scheme's (mass term plus positive couplings
+// between neighbours, two decades of spread), with a right side.
+struct RandomPeriodicSystem {
+  std::vector<double> diag, upper, rhs;
+  explicit RandomPeriodicSystem(int n, unsigned seed) : diag(n), upper(n), rhs(n) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> decades(0.0, 2.0), unit(-1.0, 1.0);
+    std::vector<double> g(n);
+    for (auto& x : g) x = std::pow(10.0, decades(rng));
+    for (int i = 0; i < n; ++i) {
+      diag[i] = std::pow(10.0, decades(rng)) + g[i] + g[(i + n - 1) % n];
+      upper[i] = -g[i];
+      rhs[i] = unit(rng);
+    }
+  }
+};
+
+// Per-system figures: ns per system and ns per unknown for `systems` systems per iteration.
+void count_systems(benchmark::State& state, int n, int systems) {
+  const double solved = double(systems) * double(state.iterations());
+  state.counters["ns_per_system"] =
+      benchmark::Counter(solved * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_unknown"] = benchmark::Counter(
+      solved * n * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// One factorisation and solve of a periodic tridiagonal SPD system with LAPACK: dpttrf, dpttrs
+// for the Sherman-Morrison correction vector and dpttrs for the right side
+// (hydro/periodic_tridiagonal, the test oracle).
 void PeriodicTridiagonal(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const RandomPeriodicSystem s(n, 1);
   granvv::hydro::PeriodicTridiagonalSolver solver(n);
-  std::vector<double> diag(n, 4.0), upper(n, -1.0), rhs(n, 1.0), x;
+  std::vector<double> x;
   for (auto _ : state) {
-    solver.factorize(diag, upper);
-    solver.solve(rhs, x);
+    solver.factorize(s.diag, s.upper);
+    solver.solve(s.rhs, x);
     benchmark::DoNotOptimize(x.data());
   }
-  state.counters["unknowns_per_s"] =
-      benchmark::Counter(double(n) * state.iterations(), benchmark::Counter::kIsRate);
+  count_systems(state, n, 1);
 }
 BENCHMARK(PeriodicTridiagonal)->Arg(2000)->Unit(benchmark::kMicrosecond);
+
+// The same with the batched periodic LDL^T (hydro/batched_tridiagonal): K systems factorised in
+// one interleaved sweep and each solved once. K = 2 is the scheme's case (momentum and energy
+// of one pass), K = 3 with the transverse momentum.
+template <std::size_t K>
+void BatchedPeriodicTridiagonal(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<RandomPeriodicSystem> systems;
+  for (std::size_t k = 0; k < K; ++k) systems.emplace_back(n, 1 + k);
+  std::array<granvv::hydro::PeriodicTridiagonalView, K> views;
+  std::array<granvv::hydro::PeriodicLdlFactors, K> factors;
+  std::array<granvv::hydro::PeriodicLdlFactors*, K> factor_out;
+  std::array<const granvv::hydro::PeriodicLdlFactors*, K> factor_in;
+  std::array<std::vector<double>, K> x;
+  std::array<double*, K> solutions;
+  for (std::size_t k = 0; k < K; ++k) {
+    views[k] = {systems[k].diag.data(), systems[k].upper.data()};
+    factor_out[k] = &factors[k];
+    factor_in[k] = &factors[k];
+    x[k] = systems[k].rhs;
+    solutions[k] = x[k].data();
+  }
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < K; ++k)
+      std::copy(systems[k].rhs.begin(), systems[k].rhs.end(), x[k].begin());
+    granvv::hydro::factorize_periodic<K>(n, views, factor_out);
+    granvv::hydro::solve_periodic<K>(n, factor_in, solutions);
+    benchmark::DoNotOptimize(x[0].data());
+  }
+  count_systems(state, n, K);
+}
+BENCHMARK_TEMPLATE(BatchedPeriodicTridiagonal, 1)->Arg(2000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BatchedPeriodicTridiagonal, 2)->Arg(2000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BatchedPeriodicTridiagonal, 3)->Arg(2000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

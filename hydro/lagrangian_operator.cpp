@@ -1,23 +1,27 @@
 #include "hydro/lagrangian_operator.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace granvv::hydro {
 
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     : closure_(closure),
       n_(cells),
-      momentum_(cells),
-      energy_(cells),
-      diag_(cells),
-      upper_(cells),
-      rhs_(cells),
+      momentum_diag_(cells),
+      momentum_upper_(cells),
+      energy_diag_(cells),
+      energy_upper_(cells),
+      shear_diag_(cells),
+      shear_upper_(cells),
       v_mid_(cells),
       vy_mid_(cells),
       dv_mid_(cells),
       work_(cells),
-      inertia_(cells),
-      shear_(cells) {}
+      inertia_(cells) {
+  if (cells < 3)
+    throw std::invalid_argument("periodic tridiagonal system needs at least 3 unknowns");
+}
 
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
@@ -86,30 +90,47 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
   const auto momentum_row = [&](int j, int l) {
     const double mu = 0.5 * (m[l] + m[j]);
     inertia_[j] = 2.0 * mu * inverse_dt;
-    diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
-    upper_[j] = -(a[j] + alpha[j]);
+    momentum_diag_[j] = inertia_[j] + a[j] + alpha[j] + a[l] + alpha[l];
+    momentum_upper_[j] = -(a[j] + alpha[j]);
     const double explicit_stress_j = -p[j] - alpha[j] * dv_ref[j];
     const double explicit_stress_l = -p[l] - alpha[l] * dv_ref[l];
-    rhs_[j] = inertia_[j] * from.node_v[j] + explicit_stress_j - explicit_stress_l;
+    v_mid_[j] = inertia_[j] * from.node_v[j] + explicit_stress_j - explicit_stress_l;
   };
   momentum_row(0, n - 1);
 #pragma GCC ivdep  // distinct arrays
   for (int j = 1; j < n; ++j) momentum_row(j, j - 1);
-  if (!momentum_.factorize(diag_, upper_)) return false;
-  momentum_.solve(rhs_, v_mid_);
   const bool transverse = from.has_transverse();
   if (transverse) {
     // Transverse momentum: shear stress a_xy_i (vy_{i+1} - vy_i) (docs/physics.md §6).
     const auto shear_row = [&](int j, int l) {
-      diag_[j] = inertia_[j] + a_xy[j] + a_xy[l];
-      upper_[j] = -a_xy[j];
-      rhs_[j] = inertia_[j] * from.node_vy[j];
+      shear_diag_[j] = inertia_[j] + a_xy[j] + a_xy[l];
+      shear_upper_[j] = -a_xy[j];
+      vy_mid_[j] = inertia_[j] * from.node_vy[j];
     };
     shear_row(0, n - 1);
 #pragma GCC ivdep  // distinct arrays
     for (int j = 1; j < n; ++j) shear_row(j, j - 1);
-    if (!shear_.factorize(diag_, upper_)) return false;
-    shear_.solve(rhs_, vy_mid_);
+  }
+  // The energy equation's matrix (Crank-Nicolson conduction, below) does not depend on the
+  // velocities, so it is factorised together with the momentum ones (hydro/batched_tridiagonal).
+  const auto energy_matrix_row = [&](int i, int r) {
+    energy_diag_[i] = m[i] * inverse_dt + 0.5 * (b[r] + b[i]);
+    energy_upper_[i] = -0.5 * b[r];
+  };
+#pragma GCC ivdep  // distinct arrays
+  for (int i = 0; i + 1 < n; ++i) energy_matrix_row(i, i + 1);
+  energy_matrix_row(n - 1, 0);
+  const PeriodicTridiagonalView momentum{momentum_diag_.data(), momentum_upper_.data()};
+  const PeriodicTridiagonalView energy{energy_diag_.data(), energy_upper_.data()};
+  if (transverse) {
+    const PeriodicTridiagonalView shear{shear_diag_.data(), shear_upper_.data()};
+    if (!factorize_periodic<3>(n, {momentum, shear, energy}, {&momentum_, &shear_, &energy_})) {
+      return false;
+    }
+    solve_periodic<2>(n, {&momentum_, &shear_}, {v_mid_.data(), vy_mid_.data()});
+  } else {
+    if (!factorize_periodic<2>(n, {momentum, energy}, {&momentum_, &energy_})) return false;
+    solve_periodic<1>(n, {&momentum_}, {v_mid_.data()});
   }
   to.node_x.resize(n);
   to.node_v.resize(n);
@@ -144,30 +165,28 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
     shear_heating(n - 1, 0);
   }
   const auto& T = T_from;
-  const auto energy_row = [&](int i, int l, int r) {
+  to.cell_T.resize(n);
+  auto& rhs = to.cell_T;
+  const auto energy_rhs = [&](int i, int l, int r) {
     const double conduction = b[r] * (T[r] - T[i]) - b[i] * (T[i] - T[l]);
-    const double heat_capacity = m[i] * inverse_dt;
-    diag_[i] = heat_capacity + 0.5 * (b[r] + b[i]);
-    upper_[i] = -0.5 * b[r];
-    rhs_[i] = heat_capacity * T[i] + work_[i] + 0.5 * conduction;
+    rhs[i] = m[i] * inverse_dt * T[i] + work_[i] + 0.5 * conduction;
   };
-  energy_row(0, n - 1, 1);
+  energy_rhs(0, n - 1, 1);
 #pragma GCC ivdep  // distinct arrays
-  for (int i = 1; i + 1 < n; ++i) energy_row(i, i - 1, i + 1);
-  energy_row(n - 1, n - 2, 0);
+  for (int i = 1; i + 1 < n; ++i) energy_rhs(i, i - 1, i + 1);
+  energy_rhs(n - 1, n - 2, 0);
   if (!c.density_heat_coupling.empty()) {
     // The heat flux -mu dn/dx, explicit: D_j = d_j (n_j - n_{j-1}) enters as G_j does.
     const auto& d = c.density_heat_coupling;
     const auto& density = c.density;
     const auto density_flux = [&](int i, int l, int r) {
-      rhs_[i] += d[r] * (density[r] - density[i]) - d[i] * (density[i] - density[l]);
+      rhs[i] += d[r] * (density[r] - density[i]) - d[i] * (density[i] - density[l]);
     };
     density_flux(0, n - 1, 1);
     for (int i = 1; i + 1 < n; ++i) density_flux(i, i - 1, i + 1);
     density_flux(n - 1, n - 2, 0);
   }
-  if (!energy_.factorize(diag_, upper_)) return false;
-  energy_.solve(rhs_, to.cell_T);
+  solve_periodic<1>(n, {&energy_}, {to.cell_T.data()});
   double largest_change = 0.0;
   bool physical = true;
   for (int i = 0; i < n; ++i) {

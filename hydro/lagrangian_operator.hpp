@@ -24,9 +24,9 @@
 // so its runs are those of the paper's Eq. (2) bit for bit.
 #include <vector>
 
+#include "hydro/batched_tridiagonal.hpp"
 #include "hydro/closure.hpp"
 #include "hydro/lagrangian_state.hpp"
-#include "hydro/periodic_tridiagonal.hpp"
 
 namespace granvv::hydro {
 
@@ -78,11 +78,12 @@ class LagrangianOperator {
  private:
   const Closure& closure_;
   int n_;
-  PeriodicTridiagonalSolver momentum_, energy_;
-  std::vector<double> diag_, upper_, rhs_, v_mid_, vy_mid_, dv_mid_, work_;
+  PeriodicLdlFactors momentum_, energy_, shear_;
+  std::vector<double> momentum_diag_, momentum_upper_, energy_diag_, energy_upper_;
+  std::vector<double> shear_diag_, shear_upper_;
+  std::vector<double> v_mid_, vy_mid_, dv_mid_, work_;
   std::vector<double> inertia_;        // 2 mu_j / dt per node
   std::vector<double> inverse_width_;  // 1 / dx_i per cell
-  PeriodicTridiagonalSolver shear_;
   double last_dT_ = 0.0;
 };
 

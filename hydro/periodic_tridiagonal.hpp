@@ -1,10 +1,11 @@
 #pragma once
-// Symmetric positive-definite periodic tridiagonal systems (the implicit viscous and conductive
-// parts of the Lagrangian scheme) in O(N). The periodic corner couples unknowns n-1 and 0; it is
-// removed by a rank-one (Sherman-Morrison) correction, A = T - w w^T / gamma, where T is the plain
-// tridiagonal matrix A + w w^T / gamma with w = (gamma, 0, ..., 0, -c), c the corner entry and
-// gamma = A(0,0). T is then SPD whenever A is, so LAPACK's dpttrf/dpttrs (L D L^T of an SPD
-// tridiagonal matrix) factor and solve it; A is SPD exactly when T is and gamma - w^T T^-1 w > 0.
+// Symmetric positive-definite periodic tridiagonal systems in O(N) with LAPACK: the reference
+// (test oracle) for the batched solver the Lagrangian scheme uses (hydro/batched_tridiagonal). The
+// periodic corner couples unknowns n-1 and 0; it is removed by a rank-one (Sherman-Morrison)
+// correction, A = T - w w^T / gamma, where T is the plain tridiagonal matrix A + w w^T / gamma with
+// w = (gamma, 0, ..., 0, -c), c the corner entry and gamma = A(0,0). T is then SPD whenever A is,
+// so LAPACK's dpttrf/dpttrs (L D L^T of an SPD tridiagonal matrix) factor and solve it; A is SPD
+// exactly when T is and gamma - w^T T^-1 w > 0.
 #include <vector>
 
 namespace granvv::hydro {
