@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -512,6 +513,7 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
     config.origins_.emplace(spec.key, where);
   }
   problems.throw_first();
+  config.reconcile_restitution();
 
   for (const CrossCheck& check : case_cross_checks()) {
     if (const auto violation = check.check(config)) {
@@ -525,6 +527,32 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
   for (const KeySpec& spec : case_schema())
     insert_value(config.table_, spec.key, config.values_.at(spec.key));
   return config;
+}
+
+// The particles' restitution md.restitution and the hydro's q are one gas's, r = 1 - 2q
+// (docs/physics.md §1). With both parts running, the key the user set last decides and the other
+// follows, so that a sweep over either moves the particles, the hydro and every compared closure
+// together; given with the same precedence (both in the case file) they must agree. md.restitution
+// = 0 means "from q". An elastic gas (r = 1) has no q > 0, the hydro's scaled units need cooling:
+// there the hydro keeps physics.q.
+void CaseConfig::reconcile_restitution() {
+  if (!boolean("md.enabled") || !boolean("hydro.enabled")) return;
+  const double r = real("md.restitution"), q = real("physics.q");
+  if (!(r > 0.0 && r < 1.0) || std::abs(0.5 * (1.0 - r) - q) <= 1e-12) return;
+  const int r_rank = origin_precedence("md.restitution"), q_rank = origin_precedence("physics.q");
+  if (r_rank == q_rank) {
+    fail(origin("md.restitution") + ": md.restitution = " + format_real(r) +
+         ": the particles' restitution must be 1 - 2 physics.q = " + format_real(1.0 - 2.0 * q) +
+         " (physics.q = " + format_real(q) + " from " + origin("physics.q") +
+         "): they are one gas; give one of them");
+  }
+  if (r_rank > q_rank) {
+    values_["physics.q"] = 0.5 * (1.0 - r);
+    origins_["physics.q"] = origin("md.restitution");
+  } else {
+    values_["md.restitution"] = 1.0 - 2.0 * q;
+    origins_["md.restitution"] = origin("physics.q");
+  }
 }
 
 const Value& CaseConfig::value(std::string_view key) const {

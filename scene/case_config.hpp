@@ -78,6 +78,8 @@ class CaseConfig {
  private:
   CaseConfig() = default;
   const Value& checked(std::string_view key, ValueType type) const;
+  // One gas, one restitution: see the definition.
+  void reconcile_restitution();
 
   std::string source_;
   std::vector<std::string> sets_;

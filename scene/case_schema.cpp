@@ -226,7 +226,8 @@ std::vector<KeySpec> rows_without_declared() {
       {"md.area_fraction", kReal, 0.05, open_closed(0, 0.5), "area fraction phi"},
       {"md.box_width", kReal, 20.0, at_least(4), "box width Ly in sigma"},
       {"md.restitution", kReal, 0.0, closed_closed(0, 1),
-       "coefficient of normal restitution r; 0 = 1 - 2 physics.q"},
+       "coefficient of normal restitution r; 0 = 1 - 2 physics.q; with the hydro running, "
+       "r and physics.q follow the one set last"},
       {"md.seed", kInteger, 1, closed_closed(0, kIntMax),
        "seed of the particle sample (ensemble member m: seed + m)"},
       {"md.ensemble", kInteger, 1, closed_closed(1, 1000), "number of independent seeds"},

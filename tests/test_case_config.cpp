@@ -681,3 +681,38 @@ TEST(ModelKeys, TheAtlasRefusesTheKeysOfModelsItDoesNotRun) {
 
 }  // namespace
 }  // namespace granvv::app
+
+namespace granvv::app {
+namespace {
+
+// The particles' r and the hydro's q are one gas's (r = 1 - 2q): the key set last decides.
+TEST(OneGas, TheRestitutionSetLastMovesTheHydroAndTheParticlesTogether) {
+  const std::string both_run = std::string(kMinimalCase) + "[md]\nenabled = true\n";
+  // A sweep over md.restitution moves the hydro's q (and with it every closure).
+  const CaseConfig by_r = load(both_run, {"md.restitution=0.8"});
+  EXPECT_NEAR(by_r.real("physics.q"), 0.1, 1e-15);
+  const CaseConfig by_r_low = load(both_run, {"md.restitution=0.6"});
+  EXPECT_NEAR(by_r_low.real("physics.q"), 0.2, 1e-15);
+  EXPECT_EQ(by_r_low.origin("physics.q"), by_r_low.origin("md.restitution"));
+  // A sweep over physics.q moves the particles of a case file that names r.
+  const CaseConfig by_q = load(both_run + "restitution = 0.8\n", {"physics.q=0.05"});
+  EXPECT_NEAR(by_q.real("md.restitution"), 0.9, 1e-15);
+  // The case file names both, and they disagree: refused in one line.
+  try {
+    load(both_run + "restitution = 0.9\n");
+    ADD_FAILURE() << "r = 0.9 beside q = 0.1 was accepted";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("md.restitution = 0.9"), std::string::npos) << m;
+    EXPECT_NE(m.find("one gas"), std::string::npos) << m;
+  }
+  // Left alone: r from q (0), the hydro not running, and the elastic gas (no q > 0).
+  EXPECT_NEAR(load(both_run).real("physics.q"), 0.1, 0.0);
+  EXPECT_NEAR(
+      load(both_run + "[hydro]\nenabled = false\n", {"md.restitution=0.5"}).real("physics.q"), 0.1,
+      0.0);
+  EXPECT_NEAR(load(both_run, {"md.restitution=1"}).real("physics.q"), 0.1, 0.0);
+}
+
+}  // namespace
+}  // namespace granvv::app
