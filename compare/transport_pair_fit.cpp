@@ -253,8 +253,9 @@ PairFit fit_transport_factor_pair(const FactorPairGrid& grid,
   for (double e : mean_error) {
     require(e > 0.0, "an amplitude without scatter over the members (its error is zero)");
   }
-  const Box whole = {grid.factors_a.front(), grid.factors_a.back(), grid.factors_b.front(),
-                     grid.factors_b.back()};
+  require(grid.b_below >= 0.0, "b_below must not be negative");
+  const Box whole = {grid.factors_a.front(), grid.factors_a.back(),
+                     grid.factors_b.front() - grid.b_below, grid.factors_b.back()};
 
   const auto [fa0, fb0] = best_pair(objective, mean, mean_error, whole, kScanPoints);
   const std::vector<double> sigma = residual_errors(objective, samples, mean_error, fa0, fb0);

@@ -32,6 +32,10 @@ struct PairSignal {
 
 struct FactorPairGrid {
   std::vector<double> factors_a, factors_b;  // each strictly increasing, at least two
+  // The fit searches F_b from this far below factors_b.front() (the polynomial extrapolated),
+  // for a coefficient whose hydro cannot run below it (mu < 0) but whose measured value may be
+  // there within its error; 0 = the grid's range.
+  double b_below = 0.0;
 };
 
 struct PairFit {

@@ -42,6 +42,8 @@ TransportPairMeasurement measure_transport_pair(const compare::TransportPair& pa
   }
   out.grid.factors_a = transport.factors;
   for (double v : pair.second_values) out.grid.factors_b.push_back(v / out.second.closure_value);
+  // One grid step below the first (mu = 0): a measured mu near zero keeps its error.
+  out.grid.b_below = out.grid.factors_b[1] - out.grid.factors_b[0];
 
   std::vector<fields::FieldSeries> members;
   for (const auto& run : md_out.runs) members.push_back(run.fields);

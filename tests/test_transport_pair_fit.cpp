@@ -102,6 +102,30 @@ TEST(TransportPairFit, NoiselessMembersGiveTheirFactors) {
   EXPECT_NEAR(fit.fitted[1][5], second(1.1, 0.7, 5), 1e-4);
 }
 
+TEST(TransportPairFit, ExtrapolatesBelowTheGridWhereAsked) {
+  // Truth F_b = -0.3, below the grid's first factor 0: found with b_below = 0.5 (the polynomial
+  // extrapolated; tolerance its error there, 1e-2), and clamped to 0 without it.
+  std::vector<PairSignal> signals = {signal_of(first), signal_of(second)};
+  for (double d : {0.002, -0.002}) {
+    std::vector<double> one, two;
+    for (int s = 0; s < kSnapshots; ++s) {
+      one.push_back(first(1.1, -0.3, s) + d);
+      two.push_back(second(1.1, -0.3, s) - d);
+    }
+    signals[0].members.push_back(one);
+    signals[1].members.push_back(two);
+  }
+  FactorPairGrid below = kGrid;
+  below.b_below = 0.5;
+  const auto fit = granvv::compare::fit_transport_factor_pair(below, signals);
+  EXPECT_NEAR(fit.factor_b, -0.3, 1e-2);
+  EXPECT_NEAR(fit.factor_a, 1.1, 1e-2);
+  EXPECT_FALSE(fit.at_grid_edge);
+  const auto clamped = granvv::compare::fit_transport_factor_pair(kGrid, signals);
+  EXPECT_EQ(clamped.factor_b, 0.0);
+  EXPECT_TRUE(clamped.at_grid_edge);
+}
+
 TEST(TransportPairFit, NoisyEnsemblesRecoverBothFactorsWithHonestErrorsAndCorrelation) {
   // 30 ensembles of 32 members from (F_a, F_b) = (0.9, 0.6): each fit within 4 of its standard
   // errors of the truth on each factor, and the stated errors and correlation honest: the mean
