@@ -21,6 +21,7 @@
 #include "app/results_file.hpp"
 #include "app/summary.hpp"
 #include "app/transport_output.hpp"
+#include "compare/transport_coefficients.hpp"
 #include "models/compare_scene.hpp"
 #include "models/model.hpp"
 #include "scene/atomic_file.hpp"
@@ -369,6 +370,19 @@ MdOutcome run_particle_part(RunContext& c) {
 void measure_transport_part(RunContext& c, const CompareScene& compare_scene, const MdOutcome& md) {
   const CompareScene::Transport& transport = *compare_scene.transport;
   try {
+    if (const compare::TransportPair* pair = compare::find_transport_pair(transport.coefficient)) {
+      const TransportPairMeasurement m = measure_transport_pair(
+          *pair, transport, compare_scene.closures, c.scene, *c.md_scene, md);
+      write_output(c.ranks, c.work / "results.h5",
+                   [&] { write_transport_pair_results(c.work / "results.h5", m); });
+      c.summary["transport"] = transport_pair_summary(m);
+      c.log.info(
+          "transport: {} = {:.4g} +- {:.4g} and {} = {:.4g} +- {:.4g} of the elastic dilute "
+          "values (correlation {:.3g}, chi2 {:.3g} for {} degrees of freedom)",
+          m.first.name, m.first.measured, m.first.error, m.second.name, m.second.measured,
+          m.second.error, m.fit.correlation, m.fit.chi2, m.fit.degrees_of_freedom);
+      return;
+    }
     const TransportMeasurement m =
         measure_transport(transport, compare_scene.closures, c.scene, *c.md_scene, md);
     write_output(c.ranks, c.work / "results.h5",

@@ -8,17 +8,27 @@
 
 namespace granvv::app {
 
-nlohmann::json transport_summary(const TransportMeasurement& m) {
+namespace {
+
+// measured, error, closures and each closure's distance in errors.
+nlohmann::json measured_against_closures(
+    double measured, double error, const std::vector<std::pair<std::string, double>>& values) {
   nlohmann::json closures = nlohmann::json::object(), sigmas = nlohmann::json::object();
-  for (const auto& [name, value] : m.closures) {
+  for (const auto& [name, value] : values) {
     closures[name] = number_or_null(value);
-    sigmas[name] = number_or_null((value - m.measured) / m.error);
+    sigmas[name] = number_or_null((value - measured) / error);
   }
-  nlohmann::json entry = {
-      {"measured", number_or_null(m.measured)},
-      {"error", number_or_null(m.error)},
-      {"closures", closures},
-      {"closure_deviation_sigmas", sigmas},
+  return {{"measured", number_or_null(measured)},
+          {"error", number_or_null(error)},
+          {"closures", closures},
+          {"closure_deviation_sigmas", sigmas}};
+}
+
+}  // namespace
+
+nlohmann::json transport_summary(const TransportMeasurement& m) {
+  nlohmann::json entry = measured_against_closures(m.measured, m.error, m.closures);
+  entry.update({
       {"closure", m.closure},
       {"factor", number_or_null(m.fit.factor)},
       {"factor_error", number_or_null(m.fit.error)},
@@ -29,8 +39,65 @@ nlohmann::json transport_summary(const TransportMeasurement& m) {
       {"phase", m.phase},
       {"factors", m.grid.factors},
       {"factor_keys", compare::transport_coefficient(m.coefficient).factor_keys},
-  };
+  });
   return {{m.coefficient, entry}};
+}
+
+nlohmann::json transport_pair_summary(const TransportPairMeasurement& m) {
+  nlohmann::json out = nlohmann::json::object();
+  const auto entry = [&](const TransportPairMeasurement::Coefficient& c,
+                         const TransportPairMeasurement::Coefficient& other,
+                         const std::vector<double>& factors) {
+    nlohmann::json e = measured_against_closures(c.measured, c.error, c.closures);
+    e.update({
+        {"sigmas_from_zero", number_or_null(c.measured / c.error)},
+        {"paired_with", other.name},
+        {"correlation", number_or_null(m.fit.correlation)},
+        {"closure", m.closure},
+        {"factor", number_or_null(c.factor)},
+        {"factor_error", number_or_null(c.factor_error)},
+        {"chi2", number_or_null(m.fit.chi2)},
+        {"degrees_of_freedom", m.fit.degrees_of_freedom},
+        {"factor_at_grid_edge", m.fit.at_grid_edge},
+        {"signals", m.signals},
+        {"factors", factors},
+        {"factor_keys", compare::transport_coefficient(c.name).factor_keys},
+    });
+    return e;
+  };
+  out[m.first.name] = entry(m.first, m.second, m.grid.factors_a);
+  out[m.second.name] = entry(m.second, m.first, m.grid.factors_b);
+  return out;
+}
+
+void write_transport_pair_results(const std::filesystem::path& file,
+                                  const TransportPairMeasurement& m) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
+  H5::Group top =
+      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
+  H5::Group g = top.createGroup(m.pair.name);
+  h5::write_attribute(g, "closure", m.closure);
+  for (const auto* c : {&m.first, &m.second}) {
+    h5::write_attribute(g, c->name + "_factor", c->factor);
+    h5::write_attribute(g, c->name + "_factor_error", c->factor_error);
+    h5::write_attribute(g, c->name + "_measured", c->measured);
+    h5::write_attribute(g, c->name + "_error", c->error);
+  }
+  h5::write_attribute(g, "correlation", m.fit.correlation);
+  h5::write_attribute(g, "scale", m.fit.scale);
+  h5::write_attribute(g, "chi2", m.fit.chi2);
+  h5::write_attribute(g, "degrees_of_freedom", double(m.fit.degrees_of_freedom));
+  h5::write_vector(g, "t", m.t);
+  h5::write_vector(g, m.first.name + "_factors", m.grid.factors_a);
+  h5::write_vector(g, m.second.name + "_factors", m.grid.factors_b);
+  for (std::size_t k = 0; k < m.signals.size(); ++k) {
+    H5::Group s = g.createGroup(m.signals[k]);
+    h5::write_vector(s, "amplitude", m.fit.amplitude[k]);
+    h5::write_vector(s, "amplitude_error", m.fit.amplitude_error[k]);
+    h5::write_vector(s, "residual_error", m.fit.residual_error[k]);
+    h5::write_vector(s, "hydro_fitted", m.fit.fitted[k]);
+  }
 }
 
 void write_transport_results(const std::filesystem::path& file, const TransportMeasurement& m) {

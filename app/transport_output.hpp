@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/transport_measurement.hpp"
+#include "models/transport_pair_measurement.hpp"
 
 namespace granvv::app {
 
@@ -18,5 +19,15 @@ nlohmann::json transport_summary(const TransportMeasurement& m);
 // jackknife error, the residual's error, the hydro's curves at F = 1 and at the fitted F, and the
 // hydro's amplitudes at every factor of the grid; the fit's numbers as attributes.
 void write_transport_results(const std::filesystem::path& file, const TransportMeasurement& m);
+
+// A pair's two coefficients, each an entry of the shape above (its factor on the closure's value,
+// the grid of its factors, the signals fitted), with `paired_with`, the `correlation` of the two
+// errors, `sigmas_from_zero` (measured / error) and the joint fit's chi^2 in both.
+nlohmann::json transport_pair_summary(const TransportPairMeasurement& m);
+
+// /transport/<pair name>: t, per signal the particles' mean amplitude, its jackknife error, the
+// residual's error and the fitted hydro; the two factor axes and the fit's numbers as attributes.
+void write_transport_pair_results(const std::filesystem::path& file,
+                                  const TransportPairMeasurement& m);
 
 }  // namespace granvv::app

@@ -93,4 +93,22 @@ const TransportCoefficient& transport_coefficient(const std::string& name) {
                               ")");
 }
 
+const std::vector<TransportPair>& transport_pairs() {
+  // mu / mu0 from 0 to 0.4: the first-Sonine mu of dilute disks is 0.016 mu0 at r = 0.99, 0.16
+  // at r = 0.9 and 0.33 at r = 0.8 (docs/physics.md §9). Not below 0, nor so far above that
+  // p_n kappa - p_T mu <= 0 at the grid's smallest conductivity factor (0.5): the hydro refuses
+  // both (its cooling state's clustering mode has no cut-off then).
+  static const std::vector<TransportPair> table = {
+      {"conductivity_and_mu", "conductivity", "mu", {0.0, 0.1, 0.2, 0.3, 0.4}},
+  };
+  return table;
+}
+
+const TransportPair* find_transport_pair(const std::string& name) {
+  for (const auto& p : transport_pairs()) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
 }  // namespace granvv::compare

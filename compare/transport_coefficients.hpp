@@ -50,4 +50,19 @@ std::vector<std::string> transport_coefficient_names();
 // Throws std::invalid_argument for an unknown name, listing the known ones.
 const TransportCoefficient& transport_coefficient(const std::string& name);
 
+// Two coefficients a scene measures jointly (compare/transport_pair_fit.hpp), named as
+// compare.transport; each is reported under its own name. The hydro runs on a grid of the first
+// coefficient's factor (compare.transport_factors) and of the second's value in units of its
+// elastic dilute value, `second_values`, so that the grid spans from zero to beyond the
+// coefficient's size at any restitution whatever the closure's own value (which must not be zero).
+struct TransportPair {
+  std::string name, first, second;
+  std::vector<double> second_values;
+};
+
+// conductivity_and_mu: kappa and mu apart, from a mode that is not at pressure balance.
+const std::vector<TransportPair>& transport_pairs();
+// nullptr for a name that is no pair.
+const TransportPair* find_transport_pair(const std::string& name);
+
 }  // namespace granvv::compare

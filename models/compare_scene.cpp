@@ -149,6 +149,12 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& c) {
     t.start = c.int_value("compare.transport_start");
     t.factors = c.reals("compare.transport_factors");
     if (t.factors.empty()) t.factors = kDefaultTransportFactors;
+    for (const auto& signal : c.strings("compare.transport_signals")) {
+      const std::size_t colon = signal.find(':');
+      t.signals.emplace_back(signal.substr(0, colon),
+                             compare::mode_phase(signal.substr(colon + 1)));
+    }
+    if (t.signals.empty()) t.signals.emplace_back(t.field, t.phase);
     if (t.factors.size() < 2) {
       throw ConfigError(c.origin("compare.transport_factors") + ": compare.transport_factors = " +
                         format_value(c.value("compare.transport_factors")) +

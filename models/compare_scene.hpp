@@ -4,6 +4,7 @@
 // of the two on the particles' bins, in the hydro's scaled units (docs/physics.md §4).
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compare/binned_fields.hpp"
@@ -34,6 +35,8 @@ struct CompareScene {
     compare::ModePhase phase = compare::ModePhase::sine;
     int start = 0;  // compare.transport_start: the snapshot the fit starts from
     std::vector<double> factors;
+    // compare.transport_signals, each field with its phase; [field, phase] when the key is [].
+    std::vector<std::pair<std::string, compare::ModePhase>> signals;
   };
   std::optional<Transport> transport;
 };

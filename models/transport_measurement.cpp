@@ -1,5 +1,6 @@
 #include "models/transport_measurement.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "compare/mode_amplitudes.hpp"
@@ -7,13 +8,36 @@
 #include "models/model.hpp"
 
 namespace granvv::app {
-namespace {
 
-// The hydro's amplitude at each of the times, from its snapshots at those times; the index of a
-// time the hydro has no snapshot at is left out of `kept`.
-std::vector<double> hydro_amplitudes(const fields::FieldSeries& hydro, const std::string& field,
-                                     compare::ModePhase phase, const std::vector<double>& times,
-                                     std::vector<std::size_t>& kept) {
+std::vector<std::size_t> snapshots_in_both(const std::vector<std::size_t>& kept,
+                                           const std::vector<std::size_t>& found) {
+  std::vector<std::size_t> both;
+  for (std::size_t s : kept) {
+    if (std::find(found.begin(), found.end(), s) != found.end()) both.push_back(s);
+  }
+  return both;
+}
+
+void require_fit_snapshots(const std::vector<std::size_t>& kept, std::size_t start) {
+  if (kept.size() < 3 || kept.front() != start) {
+    throw std::runtime_error("transport: the hydro and the particles share " +
+                             std::to_string(kept.size()) + " snapshot times from snapshot " +
+                             std::to_string(start) +
+                             " (compare.transport_start) on; the fit needs three from there");
+  }
+}
+
+std::vector<double> select_snapshots(const std::vector<double>& row,
+                                     const std::vector<std::size_t>& kept) {
+  std::vector<double> chosen;
+  for (std::size_t s : kept) chosen.push_back(row[s]);
+  return chosen;
+}
+
+std::vector<double> hydro_mode_amplitudes(const fields::FieldSeries& hydro,
+                                          const std::string& field, compare::ModePhase phase,
+                                          const std::vector<double>& times,
+                                          std::vector<std::size_t>& kept) {
   const fields::FieldColumn& column = fields::field_column(field);
   std::vector<double> out;
   std::vector<std::size_t> found;
@@ -28,8 +52,6 @@ std::vector<double> hydro_amplitudes(const fields::FieldSeries& hydro, const std
   kept = std::move(found);
   return out;
 }
-
-}  // namespace
 
 TransportMeasurement measure_transport(const CompareScene::Transport& transport,
                                        const std::vector<std::string>& closures,
@@ -69,34 +91,18 @@ TransportMeasurement measure_transport(const CompareScene::Transport& transport,
     }
     std::vector<std::size_t> found;
     std::vector<double> h =
-        hydro_amplitudes(*result.fields, transport.field, transport.phase, times, found);
+        hydro_mode_amplitudes(*result.fields, transport.field, transport.phase, times, found);
     // Keep the snapshots every run has (a run that stopped early has fewer).
-    std::vector<std::size_t> both;
-    for (std::size_t s : kept) {
-      for (std::size_t f : found) {
-        if (f == s) both.push_back(s);
-      }
-    }
-    kept = both;
+    kept = snapshots_in_both(kept, found);
     std::vector<double> at_times(times.size(), 0.0);
     for (std::size_t i = 0; i < found.size(); ++i) at_times[found[i]] = h[i];
     out.grid.factors.push_back(factor);
     out.grid.amplitudes.push_back(std::move(at_times));
   }
-  if (kept.size() < 3 || kept.front() != start) {
-    throw std::runtime_error("transport: the hydro and the particles share " +
-                             std::to_string(kept.size()) + " snapshot times from snapshot " +
-                             std::to_string(start) +
-                             " (compare.transport_start) on; the fit needs three from there");
-  }
-  auto select = [&](const std::vector<double>& row) {
-    std::vector<double> chosen;
-    for (std::size_t s : kept) chosen.push_back(row[s]);
-    return chosen;
-  };
-  for (auto& row : out.grid.amplitudes) row = select(row);
-  for (auto& row : amplitudes) row = select(row);
-  out.t = select(times);
+  require_fit_snapshots(kept, start);
+  for (auto& row : out.grid.amplitudes) row = select_snapshots(row, kept);
+  for (auto& row : amplitudes) row = select_snapshots(row, kept);
+  out.t = select_snapshots(times, kept);
 
   out.fit = compare::fit_transport_factor(out.grid, amplitudes);
   for (const std::string& name : closures) {

@@ -29,6 +29,23 @@ struct TransportMeasurement {
   std::vector<std::pair<std::string, double>> closures;
 };
 
+// The hydro's amplitude of `field`'s `phase` part at each of the times, from its snapshots at
+// those times; `kept` gets the indices of the times it has a snapshot at.
+std::vector<double> hydro_mode_amplitudes(const fields::FieldSeries& hydro,
+                                          const std::string& field, compare::ModePhase phase,
+                                          const std::vector<double>& times,
+                                          std::vector<std::size_t>& kept);
+
+// The snapshots of `kept` that are also in `found`, in kept's order.
+std::vector<std::size_t> snapshots_in_both(const std::vector<std::size_t>& kept,
+                                           const std::vector<std::size_t>& found);
+// Throws std::runtime_error, naming compare.transport_start, unless `kept` begins at `start` and
+// holds at least three snapshots.
+void require_fit_snapshots(const std::vector<std::size_t>& kept, std::size_t start);
+// row[s] for s in kept.
+std::vector<double> select_snapshots(const std::vector<double>& row,
+                                     const std::vector<std::size_t>& kept);
+
 // hydro: the comparison's hydro (aligned with the particles, from their t = 0 fields where the
 // case says so); closures: compare.closures. Runs the hydro once per factor of the grid, on the
 // particles' bins. Throws std::runtime_error when a hydro run of the grid fails or the snapshots

@@ -37,6 +37,16 @@ const Default kEmpty = Default::empty_array();
 std::vector<std::string> transport_choices() {
   std::vector<std::string> choices = {"none"};
   for (const auto& name : compare::transport_coefficient_names()) choices.push_back(name);
+  for (const auto& pair : compare::transport_pairs()) choices.push_back(pair.name);
+  return choices;
+}
+
+// compare.transport_signals: "<field>:<phase>" of every hydrodynamic field and mode phase.
+std::vector<std::string> transport_signal_choices() {
+  std::vector<std::string> choices;
+  for (const auto& field : fields::hydrodynamic_fields()) {
+    for (const auto& phase : compare::mode_phase_names()) choices.push_back(field + ":" + phase);
+  }
   return choices;
 }
 
@@ -280,6 +290,10 @@ std::vector<KeySpec> rows_without_declared() {
        "the field whose k = 1 mode measures compare.transport"},
       {"compare.transport_phase", kString, "sin", one_of(compare::mode_phase_names()),
        "the part of the field's k = 1 mode it is read from: sin 2 pi x or cos 2 pi x"},
+      {"compare.transport_signals", kStrings, kEmpty, distinct_choices(transport_signal_choices()),
+       "the modes a measurement fits at once, each \"<field>:<sin|cos>\" (a sound wave: "
+       "[\"v_x:sin\", \"n:cos\", \"T:cos\"]); [] = compare.transport_field's "
+       "compare.transport_phase part alone"},
       {"compare.transport_start", kInteger, 0, closed_closed(0, 1e4),
        "the snapshot (index into md.output_times) from which the decay is matched, relative to "
        "the amplitude there: past the particles' kinetic transient of the first collisions"},

@@ -54,6 +54,40 @@ transport_field = "v_y"
 transport_phase = "sin"
 )toml";
 
+// A k = 1 sound wave v_x = 0.15 sin 2 pi x at r = 0.9, the same scales, with garzo_dufty's mu.
+constexpr const char* kSoundWave = R"toml(
+[case]
+name = "small_sound_wave"
+[physics]
+K = 0.08
+q = 0.05
+cooling = "exact"
+[initial]
+type = "expression"
+velocity = "0.15*sin(2*pi*x)"
+[hydro]
+closure = "garzo_dufty"
+cells = 100
+[md]
+enabled = true
+engine = "event_driven"
+area_fraction = 0.02
+box_width = 20.0
+seed = 5
+ensemble = 4
+t_end = 444.0
+sample_interval = 47.0
+output_times = [0.0, 111.0, 222.0, 333.0, 444.0]
+bins = 16
+checkpoint_interval = 0.0
+[compare]
+enabled = true
+hydro_initial = "md"
+closures = ["garzo_dufty", "dilute"]
+transport = "conductivity_and_mu"
+transport_signals = ["v_x:sin", "n:cos", "T:cos"]
+)toml";
+
 fs::path write_case(const fs::path& dir) {
   const fs::path file = dir / "small_shear_wave.toml";
   std::ofstream(file) << kShearWave;
@@ -117,6 +151,53 @@ TEST(TransportCli, TooFewSnapshotsLeaveTheRunAndSayWhy) {
   fs::remove_all(dir);
 }
 
+// kappa and mu jointly from a small sound wave (v_x = 0.15 sin 2 pi x, garzo_dufty's mu): both
+// entries of the shape of the others, the pair's correlation in both, and one /transport group
+// with every signal's curves; the dilute closure (mu = 0) cannot have a factor on its mu, so
+// the measurement says why and the run is otherwise complete.
+TEST(TransportCli, SoundWaveMeasuresConductivityAndMuJointly) {
+  const fs::path dir = fresh_directory("transport-pair");
+  const fs::path out = dir / "out";
+  const fs::path file = dir / "small_sound_wave.toml";
+  std::ofstream(file) << kSoundWave;
+  const CliStreams r = run_cli_streams("run " + shell_quote(file.string()) +
+                                       " --quiet --no-report --out " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = json::parse(read_text(out / "summary.json"));
+  for (const char* name : {"conductivity", "mu"}) {
+    const json& e = s["transport"][name];
+    // (4 members: the correlation is a number unless a factor lands on its range's end)
+    for (const char* key : {"measured", "error", "factor", "factor_error", "chi2"}) {
+      ASSERT_TRUE(e[key].is_number()) << name << " " << key << ": " << e.dump(2);
+      EXPECT_TRUE(std::isfinite(e[key].get<double>())) << key;
+    }
+    EXPECT_TRUE(e["correlation"].is_number() || e["factor_at_grid_edge"].get<bool>());
+    EXPECT_EQ(e["degrees_of_freedom"], 3 * 5 - 3);  // 3 signals x 5 snapshots less 3 parameters
+    EXPECT_EQ(e["signals"], json({"v_x:sin", "n:cos", "T:cos"}));
+    EXPECT_TRUE(e["closures"].contains("dilute"));
+    EXPECT_DOUBLE_EQ(e["measured"].get<double>(),
+                     e["factor"].get<double>() * e["closures"]["garzo_dufty"].get<double>());
+  }
+  EXPECT_EQ(s["transport"]["mu"]["closures"]["dilute"].get<double>(), 0.0);
+  EXPECT_EQ(s["transport"]["mu"]["paired_with"], "conductivity");
+  H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
+  const H5::Group g = h5.openGroup("/transport/conductivity_and_mu/n:cos");
+  EXPECT_EQ(h5::read_doubles(g, "hydro_fitted").values.size(), 5u);
+
+  const fs::path dilute = dir / "dilute";
+  const CliStreams d = run_cli_streams(
+      "run " + shell_quote(file.string()) +
+      " --set hydro.closure='\"dilute\"' --set compare.closures='[\"dilute\"]' --set md.ensemble=2"
+      " --quiet --no-report --out " +
+      shell_quote(dilute.string()));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const json sd = json::parse(read_text(dilute / "summary.json"));
+  const json& failed = sd["transport"]["conductivity_and_mu"];
+  EXPECT_TRUE(failed["measured"].is_null()) << failed.dump(2);
+  EXPECT_NE(failed["failure"].get<std::string>().find("mu is zero"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(TransportCli, BadKeysExitTwoWithOneLineNamingTheKey) {
   const fs::path dir = fresh_directory("transport-bad");
   const fs::path file = write_case(dir);
@@ -126,6 +207,8 @@ TEST(TransportCli, BadKeysExitTwoWithOneLineNamingTheKey) {
       {"compare.transport_phase=\"tan\"", "compare.transport_phase"},
       {"compare.transport_factors=[1.0]", "compare.transport_factors"},
       {"compare.transport_factors=[1.0, 0.5]", "compare.transport_factors"},
+      {"compare.transport_signals=[\"v_x:tan\"]", "compare.transport_signals"},
+      {"compare.transport_signals=[\"w:sin\"]", "compare.transport_signals"},
   };
   for (const auto& [set, key] : bad) {
     SCOPED_TRACE(set);

@@ -73,6 +73,16 @@ def _read_group(f, path):
     return {"data": data, "attrs": {k: _decode(v) for k, v in g.attrs.items()}}
 
 
+def _read_transport(f, path):
+    """A /transport/<name> group; a pair's (two coefficients fitted jointly) also holds one
+    subgroup per fitted signal, under 'signals' ({"<field>:<phase>": group})."""
+    G = _read_group(f, path)
+    if G is not None:
+        G["signals"] = {name: _read_group(f, f"{path}/{name}") for name, obj in f[path].items()
+                        if isinstance(obj, h5py.Group)}
+    return G
+
+
 def _read_compare(f, root="compare"):
     """The /compare group of a side-by-side run: attrs, t, x, collision_clock, and its subgroups
     (fields/<name>, peak, energy, inertia, modes, pressure), or None when the run compared nothing.
@@ -110,7 +120,7 @@ def load_results(path):
             for key, p in GROUPS.items():
                 res[key] = _read_group(f, p)
             res["compare"] = _read_compare(f)
-            res["transport"] = {name: _read_group(f, f"transport/{name}")
+            res["transport"] = {name: _read_transport(f, f"transport/{name}")
                                 for name in (f["transport"] if "transport" in f else [])}
             res["groups"] = []
             f.visit(lambda name: res["groups"].append(name) if isinstance(f[name], h5py.Group) else None)

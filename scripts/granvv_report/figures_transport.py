@@ -23,6 +23,9 @@ def fig_cmp_transport(run):
     groups = {name: G for name, G in (run.transport or {}).items() if G}
     if not groups:
         raise Skip("no transport measurement (compare.transport = \"none\")")
+    pairs = {name: G for name, G in groups.items() if G.get("signals")}
+    if pairs:
+        return _pair_figure(run, *next(iter(pairs.items())))
     fig, axes = plt.subplots(1, len(groups), figsize=(4.4 * len(groups), 3.2), layout="constrained",
                              squeeze=False)
     measured, fields, phases, closures = [], [], [], []
@@ -59,3 +62,44 @@ def fig_cmp_transport(run):
     values = {"field": ", ".join(fields), "phase": "/".join(sorted(set(phases))),
               "closure": ", ".join(sorted(set(closures))), "relative": relative}
     return Drawn(fig, measured, caption_values=values)
+
+
+def _pair_figure(run, name, G):
+    """Two coefficients fitted jointly: every signal's amplitude ± jackknife error against the
+    hydro at the fitted pair of factors."""
+    t = arr(G, "t", 3)
+    signals = G["signals"]
+    fig, axes = plt.subplots(1, len(signals), figsize=(4.4 * len(signals), 3.2), layout="constrained",
+                             squeeze=False)
+    attrs = G["attrs"]
+    closure = attrs.get("closure", "hydro")
+    fields = []
+    for ax, (signal, S) in zip(axes[0], signals.items()):
+        a, e, fitted = arr(S, "amplitude", 3), arr(S, "amplitude_error", 3), arr(S, "hydro_fitted", 3)
+        if t is None or a is None or e is None:
+            raise Skip(f"/transport/{name}/{signal} has no amplitudes")
+        field, _, phase = signal.partition(":")
+        ax.errorbar(t, a, yerr=e, fmt="o", ms=3, color=CMP_MD, elinewidth=0.8, capsize=0,
+                    label="particles ± jackknife error")
+        if fitted is not None and fitted.size == t.size:
+            ax.plot(t, fitted, color=CMP_HYDRO, lw=1.5, label=f"{closure}, fitted factors")
+        ax.set_title(f"{name.replace('_', ' ')}: {signal}", fontsize=9)
+        ax.set_xlabel(T_UNIT)
+        ax.set_ylabel(f"k = 1 amplitude of {CMP_FIELD_TEX.get(field, field)} ({phase})")
+        ax.legend(fontsize=7, loc="best")
+        fields.append(CMP_FIELD_TEX.get(field, field))
+    measured = []
+    coefficients = [k[:-len("_measured")] for k in attrs if k.endswith("_measured")]
+    for c in coefficients:
+        block = run.transport_summary(c) or {}
+        measured.append((f"{c}: measured / elastic dilute value",
+                         f"{fmt(num(block.get('measured')))} ± {fmt(num(block.get('error')))}", None))
+        for other, value in (block.get("closures") or {}).items():
+            measured.append((f"{c}: {other} closure / elastic dilute value", fmt(num(value)), None))
+    measured.append(("correlation of the two errors; χ² / degrees of freedom",
+                     f"{fmt(num(attrs.get('correlation')))}; {fmt(num(attrs.get('chi2')), 3)} / "
+                     f"{fmt(num(attrs.get('degrees_of_freedom')))}", None))
+    values = {"field": ", ".join(fields), "phase": "sin/cos", "closure": closure,
+              "relative": "relative to its box mean" if any(f in ("$n$", "$T$") for f in fields) else "as it is"}
+    return Drawn(fig, measured, caption_values=values)
+
