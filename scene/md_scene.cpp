@@ -68,12 +68,19 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
     throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
   }
   const double dt0 = work.first_step;
-  // The work and memory of one rank: LAMMPS divides both over the ranks, the serial
-  // event-driven engine runs whole on every rank.
+  // The work and memory of one rank: LAMMPS divides both over the ranks; an engine whose
+  // members are independent (scene/md_members.hpp) runs whole members, m = rank (mod P).
   ParticleRunEstimate& e = s.estimate;
   e.ranks = launched_ranks();
   const double share = work.divides_over_ranks ? 1.0 / e.ranks : 1.0;
-  e.work_per_rank = work.work * share;
+  bool members_over_ranks = false;
+  try {
+    members_over_ranks = make_engine(s, "")->independent_members();
+  } catch (const std::invalid_argument&) {  // refused below, with its key
+  }
+  const double members_here = std::ceil(double(s.ensemble) / e.ranks);
+  e.work_per_rank =
+      members_over_ranks ? work.work * members_here / std::max(1, s.ensemble) : work.work * share;
   e.unit = work.unit;
   e.rate = work.rate;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +

@@ -4,6 +4,7 @@
 #include <H5Cpp.h>
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -53,19 +54,53 @@ std::map<std::string, std::vector<double>> numeric_datasets(const fs::path& file
     (*static_cast<std::map<std::string, std::vector<double>>*>(data))[name] = values;
     return herr_t(0);
   };
-  H5Ovisit(h5.getId(), H5_INDEX_NAME, H5_ITER_NATIVE, visit, &out, H5O_INFO_BASIC);
+  H5Ovisit(h5.getId(), H5_INDEX_NAME, H5_ITER_NATIVE, visit, &out);
   return out;
+}
+
+// The same doubles bit for bit (a NaN where the other has the same NaN: a missing value).
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 // A small event-driven ensemble: 4 members of 1000 disks, with particle frames and checkpoints at
 // every sample (HDF5 writes from every member while the others run).
+const char* const kSmallEnsemble =
+    "run md_haff --quiet --no-report --set md.engine=event_driven --set md.particles=1000 "
+    "--set md.box_width=125 --set md.ensemble=4 --set md.t_end=8 --set md.sample_interval=1 "
+    "--set 'md.output_times=[0, 4, 8]' --set md.snapshot_interval=4 "
+    "--set md.checkpoint_interval=1e-6";
+
 testing::CliResult run_with_jobs(int jobs, const fs::path& dir) {
-  return testing::run_cli(
-      "run md_haff --quiet --no-report --set md.engine=event_driven --set md.particles=1000 "
-      "--set md.box_width=125 --set md.ensemble=4 --set md.t_end=8 --set md.sample_interval=1 "
-      "--set 'md.output_times=[0, 4, 8]' --set md.snapshot_interval=4 "
-      "--set md.checkpoint_interval=1e-6 --jobs " +
-      std::to_string(jobs) + " --out " + dir.string());
+  return testing::run_cli(std::string(kSmallEnsemble) + " --jobs " + std::to_string(jobs) +
+                          " --out " + dir.string());
+}
+
+// The summary's leaves and the numeric datasets of results.h5 and of every member's particle
+// file are the same in both folders (wall times aside).
+void expect_same_outputs(const fs::path& one, const fs::path& two, int members) {
+  std::map<std::string, nlohmann::json> s1, s2;
+  leaves(nlohmann::json::parse(testing::read_text(one / "summary.json")), "", s1);
+  leaves(nlohmann::json::parse(testing::read_text(two / "summary.json")), "", s2);
+  EXPECT_EQ(s1.at("/md/ensemble"), members);
+  EXPECT_GT(s1.at("/md/collisions").get<double>(), 1e3);
+  ASSERT_EQ(s1.size(), s2.size());
+  for (const auto& [path, value] : s1) EXPECT_EQ(value, s2.at(path)) << path;
+
+  const auto h1 = numeric_datasets(one / "results.h5"), h2 = numeric_datasets(two / "results.h5");
+  EXPECT_GT(h1.size(), 20u);
+  ASSERT_EQ(h1.size(), h2.size());
+  for (const auto& [path, values] : h1) EXPECT_TRUE(same_bits(values, h2.at(path))) << path;
+
+  // Each member's particle frames, written while another member ran.
+  for (int m = 0; m < members; ++m) {
+    const std::string name = "particles_m" + std::to_string(m) + ".h5";
+    const auto f1 = numeric_datasets(one / name), f2 = numeric_datasets(two / name);
+    EXPECT_FALSE(f1.empty()) << name;
+    for (const auto& [path, values] : f1)
+      EXPECT_TRUE(same_bits(values, f2.at(path))) << name << path;
+  }
 }
 
 TEST(EnsembleJobs, TwoJobsGiveTheOutputsOfOneBitForBit) {
@@ -76,26 +111,23 @@ TEST(EnsembleJobs, TwoJobsGiveTheOutputsOfOneBitForBit) {
   const auto r2 = run_with_jobs(2, two);
   ASSERT_EQ(r2.exit_code, 0) << r2.output;
 
-  std::map<std::string, nlohmann::json> s1, s2;
-  leaves(nlohmann::json::parse(testing::read_text(one / "summary.json")), "", s1);
-  leaves(nlohmann::json::parse(testing::read_text(two / "summary.json")), "", s2);
-  EXPECT_EQ(s1.at("/md/ensemble"), 4);
-  EXPECT_GT(s1.at("/md/collisions").get<double>(), 1e3);
-  ASSERT_EQ(s1.size(), s2.size());
-  for (const auto& [path, value] : s1) EXPECT_EQ(value, s2.at(path)) << path;
+  expect_same_outputs(one, two, 4);
+  fs::remove_all(one);
+  fs::remove_all(two);
+}
 
-  const auto h1 = numeric_datasets(one / "results.h5"), h2 = numeric_datasets(two / "results.h5");
-  EXPECT_GT(h1.size(), 20u);
-  ASSERT_EQ(h1.size(), h2.size());
-  for (const auto& [path, values] : h1) EXPECT_EQ(values, h2.at(path)) << path;
-
-  // Each member's particle frames, written while the other member ran.
-  for (int m = 0; m < 4; ++m) {
-    const std::string name = "particles_m" + std::to_string(m) + ".h5";
-    const auto f1 = numeric_datasets(one / name), f2 = numeric_datasets(two / name);
-    EXPECT_FALSE(f1.empty()) << name;
-    for (const auto& [path, values] : f1) EXPECT_EQ(values, f2.at(path)) << name << path;
-  }
+// Under mpirun -np 2 each rank runs its members (m = rank mod 2) and rank 0 writes them all: the
+// outputs of one rank, bit for bit.
+TEST(EnsembleJobs, TwoMpiRanksGiveTheOutputsOfOneBitForBit) {
+  const fs::path one = testing::fresh_directory("ensemble-ranks-1");
+  const fs::path two = testing::fresh_directory("ensemble-ranks-2");
+  const auto r1 = run_with_jobs(1, one);
+  ASSERT_EQ(r1.exit_code, 0) << r1.output;
+  const auto r2 = testing::run_shell("mpirun --allow-run-as-root --oversubscribe -np 2 " +
+                                     std::string(GRANVV_BINARY) + " " + kSmallEnsemble +
+                                     " --jobs 1 --out " + two.string());
+  ASSERT_EQ(r2.exit_code, 0) << r2.output;
+  expect_same_outputs(one, two, 4);
   fs::remove_all(one);
   fs::remove_all(two);
 }
