@@ -32,6 +32,11 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-report", no_report, "skip report.html (results.h5, summary.json only)");
   run_cmd->add_flag("--resume", run.resume,
                     "continue the checkpoints in the output folder if they are of this case");
+  constexpr const char* kJobsHelp =
+      "ensemble members at a time in threads (default: the cores, shared among the MPI ranks "
+      "of the machine); the results do not depend on it. The event-driven engine only: LAMMPS "
+      "runs its members one after another (its library instances are not independent)";
+  run_cmd->add_option("--jobs", run.jobs, kJobsHelp)->check(CLI::PositiveNumber);
 
   std::string resume_dir;
   bool resume_quiet = false, resume_no_report = false;
@@ -40,6 +45,8 @@ int main(int argc, char** argv) {
   resume_cmd->add_option("dir", resume_dir, "output folder of the interrupted run")->required();
   resume_cmd->add_flag("--quiet", resume_quiet, "no progress lines on stderr");
   resume_cmd->add_flag("--no-report", resume_no_report, "skip report.html");
+  int resume_jobs = 0;
+  resume_cmd->add_option("--jobs", resume_jobs, kJobsHelp)->check(CLI::PositiveNumber);
 
   SweepOptions sweep;
   auto* sweep_cmd = app.add_subcommand(
@@ -126,6 +133,7 @@ int main(int argc, char** argv) {
     resumed.quiet = resume_quiet;
     resumed.report = !resume_no_report;
     resumed.resume = true;
+    resumed.jobs = resume_jobs;
     const int code = run_command(resumed);
     if (hdf5_broken()) end_process_now(code);
     return code;

@@ -6,11 +6,13 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <thread>
 
 #include "app/compare_output.hpp"
 #include "app/md_output.hpp"
@@ -22,6 +24,7 @@
 #include "app/summary.hpp"
 #include "app/transport_output.hpp"
 #include "compare/transport_coefficients.hpp"
+#include "md_bridge/mpi_environment.hpp"
 #include "models/compare_scene.hpp"
 #include "models/model.hpp"
 #include "scene/atomic_file.hpp"
@@ -69,12 +72,18 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       sc.physics().q, sc.unstable_modes(), scene.ensemble);
   log.info("md: work estimate {}", scene.estimate.describe());
   if (!checkpointing.resume.empty()) {
-    const MemberCheckpoint& last_saved = checkpointing.resume.back();
-    log.info("md: resuming from the checkpoints: {} finished member(s){}",
-             checkpointing.resume.size() - (last_saved.finished ? 0 : 1),
-             last_saved.finished ? std::string()
-                                 : fmt::format(", member {} at t = {:.6g}",
-                                               checkpointing.resume.size(), last_saved.state.t));
+    int finished = 0;
+    std::string running;
+    for (std::size_t m = 0; m < checkpointing.resume.size(); ++m) {
+      const MemberCheckpoint& saved = checkpointing.resume[m];
+      if (saved.missing) continue;
+      if (saved.finished) {
+        ++finished;
+      } else {
+        running += fmt::format(", member {} at t = {:.6g}", m + 1, saved.state.t);
+      }
+    }
+    log.info("md: resuming from the checkpoints: {} finished member(s){}", finished, running);
   }
   auto last = std::chrono::steady_clock::now();
   ParticleModel model(
@@ -85,14 +94,17 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
         if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
         last = now;
         const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
-        const md::EngineCost cost = engine.cost();  // its own unit: atom_steps, collisions
+        const md::EngineCost& cost = p.cost;  // its own unit: atom_steps, collisions
+        // This member's rest, then the members after it, `jobs` at a time.
+        const double later = double(scene.ensemble - member - 1) / std::max(1, scene.jobs);
         log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} {}/s ETA {:.1f} s",
                  member + 1, scene.ensemble, p.t, p.T, p.steps, cost.per_second(), cost.work_unit,
-                 p.wall_seconds * (1 - f) / f + p.wall_seconds * (scene.ensemble - member - 1) / f);
+                 p.wall_seconds * (1 - f) / f + p.wall_seconds * later / f);
       },
       &checkpointing);
   model.run();
   const MdOutcome& out = model.outcome();
+  if (out.threads > 1) log.info("md: members ran {} at a time in threads", out.threads);
   log.info("md: restitution {:.6f} (target {:.6f}), {}", out.collision_rule.restitution,
            sc.restitution, out.collision_rule.description);
   log.info(
@@ -537,6 +549,15 @@ int run_command(const RunOptions& options) {
   // rank learns whether the folder could be opened.
   const Ranks ranks = join_ranks(md_scene.has_value());
   const bool writer = ranks.writer();
+  if (md_scene) {  // members at a time: the machine's cores shared among its ranks
+    const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+    md_scene->jobs =
+        options.jobs > 0
+            ? options.jobs
+            : std::max(1, cores / (ranks.size > 1
+                                       ? md::MpiEnvironment::ranks_on_this_machine(MPI_COMM_WORLD)
+                                       : 1));
+  }
   const fs::path dir =
       options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
   std::optional<OutputFolder> folder;

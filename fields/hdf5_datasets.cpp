@@ -4,6 +4,11 @@
 
 namespace granvv::h5 {
 
+std::recursive_mutex& library_mutex() {
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+
 void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v) {
   const hsize_t dims[1] = {v.size()};
   auto ds = g.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));

@@ -3,10 +3,15 @@
 // datasets and scalar attributes, shared by every output group.
 #include <H5Cpp.h>
 
+#include <mutex>
 #include <string>
 #include <vector>
 
 namespace granvv::h5 {
+
+// Debian's HDF5 is built without thread safety: code that may run beside other threads of the
+// process (ensemble members in threads, scene/md_members.hpp) holds this around every HDF5 call.
+std::recursive_mutex& library_mutex();
 
 void write_vector(H5::Group& g, const std::string& name, const std::vector<double>& v);
 // rows x (v.size() / rows), row-major

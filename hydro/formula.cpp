@@ -3,6 +3,7 @@
 #include <muParser.h>
 
 #include <algorithm>
+#include <mutex>
 
 #include "fields/constants.hpp"
 
@@ -12,6 +13,9 @@ struct Formula::Compiled {
   std::string text;
   std::vector<double> values;  // the parser reads the variables from here (sized once)
   mu::Parser parser;
+  // Copies of a Formula share it, and evaluation writes the variables and the parser's stack:
+  // one evaluation at a time (the particle sampler may run in several threads).
+  std::mutex evaluating;
 };
 
 Formula::Formula(const std::string& text, const NamedReals& constants)
@@ -56,11 +60,13 @@ Formula::Formula(const std::string& text, const NamedReals& constants,
 }
 
 double Formula::operator()(double x) const {
+  const std::lock_guard<std::mutex> lock(compiled_->evaluating);
   compiled_->values[0] = x;
   return compiled_->parser.Eval();
 }
 
 double Formula::operator()(double a, double b) const {
+  const std::lock_guard<std::mutex> lock(compiled_->evaluating);
   compiled_->values[0] = a;
   compiled_->values[1] = b;
   return compiled_->parser.Eval();

@@ -619,6 +619,30 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   if (!p.x.empty()) start(p.x, p.v, t);
 }
 
+void EventDrivenEngine::add_totals(const EngineState& other) {
+  EventDrivenEngine run(options_);
+  run.restore_state({{}, 1, 0, other.numbers});
+  // The later run's own counts, as after it on one engine; the totals summed.
+  events_ = run.events_;
+  stops_ = run.stops_;
+  collisions_ = run.collisions_;
+  crossings_ = run.crossings_;
+  changed_ = run.changed_;
+  tc_elastic_ = run.tc_elastic_;
+  speed_elastic_ = run.speed_elastic_;
+  t_ = run.t_;
+  runs_ += run.runs_;
+  all_events_ += run.all_events_;
+  all_collisions_ += run.all_collisions_;
+  all_crossings_ += run.all_crossings_;
+  all_changed_ += run.all_changed_;
+  all_tc_elastic_ += run.all_tc_elastic_;
+  all_speed_elastic_ += run.all_speed_elastic_;
+  approach_sum_ += run.approach_sum_;
+  recoil_sum_ += run.recoil_sum_;
+  wall_before_ += run.wall_before_;
+}
+
 EngineCost EventDrivenEngine::cost() const {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - made_).count();

@@ -95,6 +95,9 @@ class EventDrivenEngine final : public ParticleEngine {
   // events, events_per_second, crossings, restitution_effective, collapse_rule.{rule,
   // collapse_speed, collisions_changed, fraction_changed}, max_collision_rate, cells.
   EngineDetails details() const override;
+  // Each member on an engine of its own (it keeps only its totals from one run to the next).
+  bool independent_members() const override { return true; }
+  void add_totals(const EngineState& other) override;
 
   // The collision virial over the last interval of advance_to (for the pressure: kinetic plus
   // collisional).

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "fields/field_series.hpp"
+#include "fields/hdf5_datasets.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/h5md_frames.hpp"
 #include "md_bridge/moment_reduction.hpp"
@@ -16,6 +17,18 @@
 #include "md_bridge/particle_sampler.hpp"
 
 namespace granvv::md {
+
+namespace {
+
+// The particle frames, closed under the HDF5 lock (members may run in threads).
+struct CloseFramesLocked {
+  void operator()(H5mdFrames* frames) const {
+    const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
+    delete frames;
+  }
+};
+
+}  // namespace
 
 const std::vector<MdSeriesColumn>& md_series_columns() {
   static const std::vector<MdSeriesColumn> columns{
@@ -86,11 +99,12 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
 
   // Particle output in H5MD layout: every rank writes its block of the frames, rank 0 the
   // observables (h5md_frames.hpp).
-  std::unique_ptr<H5mdFrames> frames;
+  std::unique_ptr<H5mdFrames, CloseFramesLocked> frames;
   if (!spec.h5md_path.empty()) {
-    frames = std::make_unique<H5mdFrames>(
+    const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
+    frames.reset(new H5mdFrames(
         H5mdFrames::Spec{spec.h5md_path, scene.particles, lx, ly, spec.creator_version},
-        engine.comm(), resume ? engine.frame_step() : -1);
+        engine.comm(), resume ? engine.frame_step() : -1));
   }
   H5mdWriter* h5md = frames ? frames->observables() : nullptr;
   // The sample, frame and output clocks are sums kept apart, so a frame or an output time due
@@ -104,6 +118,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   auto write_frame = [&](double time) {
     if (spec.snapshot_interval <= 0.0 || !frames) return;
     if (!due_by(next_frame, time)) return;
+    const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
     frames->append_frame(engine.frame_step(), time, engine);
     next_frame += spec.snapshot_interval;
   };
@@ -152,6 +167,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
       result.fields.snapshots.push_back(std::move(f));
     }
     if (h5md) {
+      const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
       const long long step = engine.frame_step();
       h5md->append_observable("thermal_energy", step, t, e.thermal);
       h5md->append_observable("kinetic_energy_x", step, t, e.kinetic_macro_x);
@@ -206,7 +222,8 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     observe(snapshot);
     engine.between_segments();
     checkpoint_if_due();
-    if (progress) progress({t, spec.t_end, result.series.T.back(), wall(), result.steps});
+    if (progress)
+      progress({t, spec.t_end, result.series.T.back(), wall(), result.steps, engine.cost()});
   }
   result.status = "ok";
   result.stop_reason = "end time reached";

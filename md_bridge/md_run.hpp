@@ -64,6 +64,7 @@ const std::vector<MdSeriesColumn>& md_series_columns();
 struct MdProgress {
   double t, t_end, T, wall_seconds;
   long long steps;
+  EngineCost cost;  // the engine's, over every run it made so far
 };
 
 struct MdRunResult {

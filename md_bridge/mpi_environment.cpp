@@ -6,7 +6,8 @@ MpiEnvironment::MpiEnvironment() {
   int initialised = 0;
   MPI_Initialized(&initialised);
   if (!initialised) {
-    MPI_Init(nullptr, nullptr);
+    int provided = MPI_THREAD_SINGLE;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_MULTIPLE, &provided);
     initialised_here_ = true;
   }
 }
@@ -16,6 +17,28 @@ MpiEnvironment::~MpiEnvironment() {
   int finalised = 0;
   MPI_Finalized(&finalised);
   if (!finalised) MPI_Finalize();
+}
+
+int MpiEnvironment::thread_level() {
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  if (!initialised || finalised) return MPI_THREAD_SINGLE;
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&provided);
+  return provided;
+}
+
+int MpiEnvironment::ranks_on_this_machine(MPI_Comm comm) {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised) return 1;
+  MPI_Comm local;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int size = 1;
+  MPI_Comm_size(local, &size);
+  MPI_Comm_free(&local);
+  return size;
 }
 
 void MpiEnvironment::ensure() {

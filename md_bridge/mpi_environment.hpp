@@ -20,6 +20,11 @@ class MpiEnvironment {
   // if it was initialised here, finalised at program exit. Engines call this before they
   // open anything collective.
   static void ensure();
+  // The thread support MPI gives (MPI_THREAD_SINGLE .. MPI_THREAD_MULTIPLE; it is asked for
+  // MPI_THREAD_MULTIPLE, so that ensemble members may run in threads); SINGLE before MPI starts.
+  static int thread_level();
+  // The ranks of comm on this machine (collective; 1 before MPI starts).
+  static int ranks_on_this_machine(MPI_Comm comm);
 
  private:
   bool initialised_here_ = false;

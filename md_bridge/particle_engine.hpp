@@ -185,6 +185,21 @@ class ParticleEngine {
 
   virtual EngineCost cost() const = 0;
   virtual EngineDetails details() const { return {}; }
+
+  // Whether each member of an ensemble may run on an engine of its own, made afresh by the
+  // registry on a communicator of its own, in a thread of its own, with the results it would
+  // have on one engine that runs the members in turn: an engine that keeps nothing from one run
+  // to the next but its totals, and holds no process-wide state (the event-driven engine; not
+  // LAMMPS, whose library instances are not independent of each other in one process).
+  virtual bool independent_members() const { return false; }
+  // The ranks one member runs on under MPI (0: every rank of comm(), one member after another).
+  virtual int ranks_per_member() const { return 0; }
+  // Adds the totals of the runs another engine of the same settings made (its save_state(false)),
+  // as if they had been made here: the ensemble's totals when its members ran apart, added in
+  // member order. Throws std::logic_error for an engine whose members never run apart.
+  virtual void add_totals(const EngineState& /*other*/) {
+    throw std::logic_error(name() + " engine: its members do not run apart");
+  }
 };
 
 }  // namespace granvv::md

@@ -248,7 +248,11 @@ std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, i
   std::vector<MemberCheckpoint> loaded;
   for (int m = 0; m < members; ++m) {
     const fs::path file = member_file(out_dir, m);
-    if (!fs::exists(file)) break;
+    if (!fs::exists(file)) {
+      loaded.push_back({});
+      loaded.back().missing = true;
+      continue;
+    }
     try {
       loaded.push_back(read_state(file, out_dir, m, rank, ranks));
     } catch (const H5::Exception& e) {
@@ -257,8 +261,8 @@ std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, i
     } catch (const std::exception& e) {
       throw std::runtime_error("cannot read the checkpoint " + file.string() + ": " + e.what());
     }
-    if (!loaded.back().finished) break;
   }
+  while (!loaded.empty() && loaded.back().missing) loaded.pop_back();
   return loaded;
 }
 

@@ -43,6 +43,7 @@ struct MemberCheckpoint {
   bool finished = false;
   md::MdRunState state;
   double particle_part_wall_seconds = 0.0;  // wall time of the particle part when it was saved
+  bool missing = false;  // no checkpoint of this member (members that run apart leave gaps)
 };
 
 // Writes member m's checkpoint, replacing the previous one only once it is complete on the disk.
@@ -53,10 +54,10 @@ struct MemberCheckpoint {
 void save_member_checkpoint(const std::filesystem::path& out_dir, int member,
                             const MemberCheckpoint& checkpoint, MPI_Comm comm = MPI_COMM_SELF);
 
-// The members' checkpoints in order, up to the first member without one, as rank `rank` of
-// `ranks` restores them (its own block of particles saved in blocks). Throws std::runtime_error
-// naming the file if one cannot be read, or if it was saved in blocks over another number of
-// ranks.
+// The members' checkpoints in order, up to the last member with one (a member without one
+// between them is `missing`), as rank `rank` of `ranks` restores them (its own block of particles
+// saved in blocks). Throws std::runtime_error naming the file if one cannot be read, or if it was
+// saved in blocks over another number of ranks.
 std::vector<MemberCheckpoint> load_member_checkpoints(const std::filesystem::path& out_dir,
                                                       int members, int rank = 0, int ranks = 1);
 

@@ -15,6 +15,7 @@
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
+#include "scene/md_members.hpp"
 #include "scene/work_estimate.hpp"
 
 namespace granvv::app {
@@ -67,12 +68,19 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
     throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
   }
   const double dt0 = work.first_step;
-  // The work and memory of one rank: LAMMPS divides both over the ranks, the serial
-  // event-driven engine runs whole on every rank.
+  // The work and memory of one rank: LAMMPS divides both over the ranks; an engine whose
+  // members are independent (scene/md_members.hpp) runs whole members, m = rank (mod P).
   ParticleRunEstimate& e = s.estimate;
   e.ranks = launched_ranks();
   const double share = work.divides_over_ranks ? 1.0 / e.ranks : 1.0;
-  e.work_per_rank = work.work * share;
+  bool members_over_ranks = false;
+  try {
+    members_over_ranks = make_engine(s, "")->independent_members();
+  } catch (const std::invalid_argument&) {  // refused below, with its key
+  }
+  const double members_here = std::ceil(double(s.ensemble) / e.ranks);
+  e.work_per_rank =
+      members_over_ranks ? work.work * members_here / std::max(1, s.ensemble) : work.work * share;
   e.unit = work.unit;
   e.rate = work.rate;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
@@ -123,6 +131,76 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   refuse_beyond(c, {"md.snapshot_interval", "md.sample_interval", "md.t_end", "md.ensemble"},
                 frame_bytes + series_bytes, kMaxOutputBytes, "bytes",
                 "the particle output (H5MD frames and time series)");
+}
+
+// The members one after another on the one engine (which keeps its state from one to the next).
+void run_members_in_turn(const MdScene& scene, md::ParticleEngine& engine,
+                         const std::function<void(int, const md::MdProgress&)>& progress,
+                         const MdCheckpointing* checkpointing, MdOutcome& out,
+                         double& wall_before) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const bool saving = checkpointing && !checkpointing->out_dir.empty();
+  const std::vector<MemberCheckpoint> none;
+  const auto& resume = checkpointing ? checkpointing->resume : none;
+  auto last_save = clock::now();
+  auto since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  auto save = [&](int member, MemberCheckpoint c) {
+    c.particle_part_wall_seconds = wall_before + since(start);
+    try {
+      save_member_checkpoint(checkpointing->out_dir, member, c, engine.comm());
+      ++out.checkpoints_written;
+    } catch (const std::exception& e) {
+      if (checkpointing->warn) checkpointing->warn(e.what());
+    }
+    last_save = clock::now();
+  };
+  for (int m = 0; m < scene.ensemble; ++m) {
+    const MemberCheckpoint* earlier =
+        m < static_cast<int>(resume.size()) && !resume[std::size_t(m)].missing
+            ? &resume[std::size_t(m)]
+            : nullptr;
+    if (earlier) wall_before = earlier->particle_part_wall_seconds;
+    if (earlier && earlier->finished) {  // its result as it was, and the engine's totals after it
+      engine.restore_state(earlier->state.engine);
+      out.runs.push_back(earlier->state.so_far);
+      ++out.members_restored;
+    } else {
+      md::MdRunSpec spec = scene.spec;
+      spec.seed += static_cast<std::uint64_t>(m);
+      spec.h5md_path = member_h5md_path(scene, m);
+      md::MdCheckpoints checkpoints;
+      if (saving) {
+        checkpoints.due = [&] {
+          return (checkpointing->interval_seconds > 0.0 &&
+                  since(last_save) >= checkpointing->interval_seconds) ||
+                 (checkpointing->stop_requested && checkpointing->stop_requested());
+        };
+        checkpoints.save = [&](const md::MdRunState& state) { save(m, {false, state, 0.0}); };
+      }
+      if (earlier) {
+        checkpoints.resume_from = &earlier->state;
+        out.resumed_member = m;
+        out.resumed_t = earlier->state.t;
+      }
+      out.runs.push_back(md::run_md(
+          spec, engine,
+          [&](const md::MdProgress& p) {
+            if (progress) progress(m, p);
+          },
+          checkpoints));
+      if (saving) {  // the finished member, and the engine's totals after it
+        md::MdRunState done;
+        done.engine = engine.save_state(false);
+        done.so_far = out.runs.back();
+        int rank = 0;
+        MPI_Comm_rank(engine.comm(), &rank);
+        if (rank == 0) save(m, {true, done, 0.0});
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -226,12 +304,23 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   return s;
 }
 
-std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir) {
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir,
+                                                MPI_Comm comm) {
   md::ParticleEngineSetup setup;
   setup.scene = scene.spec.scene;
   setup.settings = scene.engine_settings;
   setup.log_dir = log_dir;
+  setup.comm = comm;
   return md::make_particle_engine(scene.engine, setup);
+}
+
+std::string member_h5md_path(const MdScene& scene, int member) {
+  const std::string& path = scene.spec.h5md_path;
+  if (path.empty() || scene.ensemble <= 1) return path;
+  const std::filesystem::path p = path;  // particles.h5 -> particles_m1.h5
+  return (p.parent_path() /
+          (p.stem().string() + "_m" + std::to_string(member) + p.extension().string()))
+      .string();
 }
 
 MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
@@ -250,72 +339,38 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
         << " by more than " << md::kRestitutionTolerance << "; refusing the run";
     throw std::runtime_error(why.str());
   }
-  const bool saving = checkpointing && !checkpointing->out_dir.empty();
-  const std::vector<MemberCheckpoint> none;
-  const auto& resume = checkpointing ? checkpointing->resume : none;
   double wall_before = 0.0;  // the particle part of the runs this one continues
-  auto last_save = clock::now();
   auto since = [](clock::time_point t) {
     return std::chrono::duration<double>(clock::now() - t).count();
   };
-  auto save = [&](int member, MemberCheckpoint c) {
-    c.particle_part_wall_seconds = wall_before + since(start);
-    try {
-      save_member_checkpoint(checkpointing->out_dir, member, c, engine.comm());
-      ++out.checkpoints_written;
-    } catch (const std::exception& e) {
-      if (checkpointing->warn) checkpointing->warn(e.what());
+  if (engine.independent_members()) {
+    if (checkpointing) {
+      for (const MemberCheckpoint& c : checkpointing->resume)
+        if (!c.missing) wall_before = std::max(wall_before, c.particle_part_wall_seconds);
     }
-    last_save = clock::now();
-  };
+    MembersApart apart =
+        run_members_apart(scene, engine.comm(), scene.jobs, progress, checkpointing,
+                          [&] { return wall_before + since(start); });
+    // The ensemble's totals, member by member, as one engine running them in turn has them.
+    for (std::size_t m = 0; m < apart.records.size(); ++m) {
+      if (m == 0) {
+        engine.restore_state(apart.records[m].totals);
+      } else {
+        engine.add_totals(apart.records[m].totals);
+      }
+      out.runs.push_back(std::move(apart.records[m].run));
+    }
+    out.threads = apart.threads;
+    out.checkpoints_written = apart.checkpoints_written;
+    out.resumed_member = apart.resumed_member;
+    out.resumed_t = apart.resumed_t;
+    out.members_restored = apart.members_restored;
+  } else {
+    run_members_in_turn(scene, engine, progress, checkpointing, out, wall_before);
+  }
   std::vector<compare::MemberSamples> samples;
-  for (int m = 0; m < scene.ensemble; ++m) {
-    const MemberCheckpoint* earlier =
-        m < static_cast<int>(resume.size()) ? &resume[std::size_t(m)] : nullptr;
-    if (earlier) wall_before = earlier->particle_part_wall_seconds;
-    if (earlier && earlier->finished) {  // its result as it was, and the engine's totals after it
-      engine.restore_state(earlier->state.engine);
-      out.runs.push_back(earlier->state.so_far);
-      ++out.members_restored;
-    } else {
-      md::MdRunSpec spec = scene.spec;
-      spec.seed += static_cast<std::uint64_t>(m);
-      if (!spec.h5md_path.empty() && scene.ensemble > 1) {  // particles.h5 -> particles_m1.h5
-        const std::filesystem::path p = spec.h5md_path;
-        spec.h5md_path = (p.parent_path() /
-                          (p.stem().string() + "_m" + std::to_string(m) + p.extension().string()))
-                             .string();
-      }
-      md::MdCheckpoints checkpoints;
-      if (saving) {
-        checkpoints.due = [&] {
-          return (checkpointing->interval_seconds > 0.0 &&
-                  since(last_save) >= checkpointing->interval_seconds) ||
-                 (checkpointing->stop_requested && checkpointing->stop_requested());
-        };
-        checkpoints.save = [&](const md::MdRunState& state) { save(m, {false, state, 0.0}); };
-      }
-      if (earlier) {
-        checkpoints.resume_from = &earlier->state;
-        out.resumed_member = m;
-        out.resumed_t = earlier->state.t;
-      }
-      out.runs.push_back(md::run_md(
-          spec, engine,
-          [&](const md::MdProgress& p) {
-            if (progress) progress(m, p);
-          },
-          checkpoints));
-      if (saving) {  // the finished member, and the engine's totals after it
-        md::MdRunState done;
-        done.engine = engine.save_state(false);
-        done.so_far = out.runs.back();
-        int rank = 0;
-        MPI_Comm_rank(engine.comm(), &rank);
-        if (rank == 0) save(m, {true, done, 0.0});
-      }
-    }
-    const md::MdSeries& series = out.runs.back().series;
+  for (const md::MdRunResult& run : out.runs) {
+    const md::MdSeries& series = run.series;
     samples.push_back({series.t, series.T, series.mode_energy_fraction, series.pressure_xx,
                        series.pressure_yy, series.pressure_stderr, series.compressibility});
   }

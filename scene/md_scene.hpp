@@ -3,6 +3,8 @@
 // particle engine it names (md_bridge/particle_engine.hpp) with its collision-rule check, an
 // ensemble of seeds, and the Haff fit against kinetic theory (dilute and with the Enskog
 // factor).
+#include <mpi.h>
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -32,6 +34,9 @@ struct MdScene {
   md::EngineSettings engine_settings;
   // The work, memory and wall time of one rank (md_bridge/particle_work.hpp).
   ParticleRunEstimate estimate;
+  // Members at a time in threads on each rank, for an engine whose members are independent
+  // (scene/md_members.hpp): `granvv run --jobs`, not a case key (the results do not depend on it).
+  int jobs = 1;
 };
 
 // Reads [md]; std::nullopt if md.enabled is false. Throws ConfigError for scenes that cannot
@@ -40,7 +45,12 @@ struct MdScene {
 std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
 
 // The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
-std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir);
+std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir,
+                                                MPI_Comm comm = MPI_COMM_WORLD);
+
+// Member m's H5MD particle file: spec.h5md_path, with _m<m> before its extension in an ensemble
+// ("" without frames).
+std::string member_h5md_path(const MdScene& scene, int member);
 
 // The initial signal-to-noise of the scene's imposed flow in its three forms (velocity, gradient,
 // mode: compare/signal_to_noise.hpp, docs/physics.md §8).
@@ -76,6 +86,7 @@ struct MdOutcome {
   int resumed_member = -1;
   double resumed_t = 0.0;
   int members_restored = 0;  // finished members taken from the checkpoints
+  int threads = 1;           // members at a time on each rank (scene/md_members.hpp)
 };
 
 // Checkpoints of the particle part: into out_dir/.granvv-checkpoint every interval_seconds of

@@ -343,6 +343,30 @@ TEST_P(EveryEngine, ReportsItsCostAndAVirialPerParticle) {
   }
 }
 
+// An engine whose members run apart (scene/md_members.hpp): two runs on engines of their own,
+// their totals added in order, give the work (its own unit) of the two runs on one engine.
+TEST_P(EveryEngine, TotalsOfMembersRunApartAddUpToThoseOfOneEngine) {
+  const ParticleScene s = scene(0.5);
+  const auto one = make(s);
+  if (!one->independent_members()) GTEST_SKIP() << GetParam() << " runs its members in turn";
+  const ParticleSample first = sample(s), second = sample_particles(s, hydro::uniform_fields(), 8);
+  one->set_up(first);
+  one->advance_to(kRun);
+  one->set_up(second);
+  one->advance_to(kRun);
+  const auto a = make(s), b = make(s), merged = make(s);
+  a->set_up(first);
+  a->advance_to(kRun);
+  b->set_up(second);
+  b->advance_to(kRun);
+  merged->restore_state(a->save_state(false));
+  merged->add_totals(b->save_state(false));
+  EXPECT_GT(one->cost().work, 0.0);
+  EXPECT_EQ(merged->cost().work, one->cost().work);
+  EXPECT_EQ(merged->cost().work_unit, one->cost().work_unit);
+  EXPECT_EQ(merged->steps(), one->steps());  // the later run's own count
+}
+
 INSTANTIATE_TEST_SUITE_P(Registered, EveryEngine, ::testing::ValuesIn(particle_engine_names()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return info.param;

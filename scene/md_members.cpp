@@ -1,0 +1,164 @@
+#include "scene/md_members.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "fields/hdf5_datasets.hpp"
+#include "md_bridge/every_rank.hpp"
+#include "md_bridge/mpi_environment.hpp"
+#include "scene/md_scene.hpp"
+
+namespace granvv::app {
+
+namespace {
+
+// Another member failed: this one stops at its next sample.
+struct Abandoned : std::runtime_error {
+  Abandoned() : std::runtime_error("abandoned after another member failed") {}
+};
+
+}  // namespace
+
+MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
+                               const std::function<void(int, const md::MdProgress&)>& progress,
+                               const MdCheckpointing* checkpointing,
+                               const std::function<double()>& particle_part_wall) {
+  using clock = std::chrono::steady_clock;
+  md::MpiEnvironment::ensure();
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const int members = scene.ensemble;
+  auto owner = [ranks](int m) { return m % ranks; };
+  MembersApart out;
+  out.records.resize(std::size_t(members));
+  const bool saving = checkpointing && !checkpointing->out_dir.empty();
+  const std::vector<MemberCheckpoint> none;
+  const auto& resume = checkpointing ? checkpointing->resume : none;
+  auto earlier_of = [&](int m) -> const MemberCheckpoint* {
+    return m < int(resume.size()) && !resume[std::size_t(m)].missing ? &resume[std::size_t(m)]
+                                                                     : nullptr;
+  };
+  std::vector<int> to_run;  // this rank's members still to run, in order
+  for (int m = 0; m < members; ++m) {
+    const MemberCheckpoint* earlier = earlier_of(m);
+    if (earlier && earlier->finished) {  // its result as it was, and its engine's totals
+      out.records[std::size_t(m)] = {earlier->state.so_far, earlier->state.engine};
+      ++out.members_restored;
+      continue;
+    }
+    if (earlier && out.resumed_member < 0) {
+      out.resumed_member = m;
+      out.resumed_t = earlier->state.t;
+    }
+    if (owner(m) == rank) to_run.push_back(m);
+  }
+
+  // MPI calls from several threads at once need MPI_THREAD_MULTIPLE and a communicator each.
+  out.threads = std::max(1, std::min<int>(jobs, int(to_run.size())));
+  if (md::MpiEnvironment::thread_level() < MPI_THREAD_MULTIPLE) out.threads = 1;
+  std::vector<MPI_Comm> comms(std::size_t(out.threads));
+  for (MPI_Comm& c : comms) MPI_Comm_dup(MPI_COMM_SELF, &c);
+
+  std::mutex mutex;  // the progress callback, the checkpoint count
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> abandon{false};
+  std::vector<std::exception_ptr> errors(to_run.size());
+  auto save = [&](int member, MemberCheckpoint c) {
+    c.particle_part_wall_seconds = particle_part_wall();
+    try {
+      const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
+      save_member_checkpoint(checkpointing->out_dir, member, c, MPI_COMM_SELF);
+      const std::lock_guard<std::mutex> count(mutex);
+      ++out.checkpoints_written;
+    } catch (const std::exception& e) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (checkpointing->warn) checkpointing->warn(e.what());
+    }
+  };
+  auto run_member = [&](int m, MPI_Comm member_comm) {
+    const auto engine = make_engine(scene, "", member_comm);
+    md::MdRunSpec spec = scene.spec;
+    spec.seed += static_cast<std::uint64_t>(m);
+    spec.h5md_path = member_h5md_path(scene, m);
+    auto last_save = clock::now();
+    md::MdCheckpoints checkpoints;
+    if (saving) {
+      checkpoints.due = [&] {
+        const double since = std::chrono::duration<double>(clock::now() - last_save).count();
+        return (checkpointing->interval_seconds > 0.0 &&
+                since >= checkpointing->interval_seconds) ||
+               (checkpointing->stop_requested && checkpointing->stop_requested());
+      };
+      checkpoints.save = [&](const md::MdRunState& state) {
+        save(m, {false, state, 0.0});
+        last_save = clock::now();
+      };
+    }
+    checkpoints.resume_from = earlier_of(m) ? &earlier_of(m)->state : nullptr;
+    MemberRecord record;
+    record.run = md::run_md(
+        spec, *engine,
+        [&](const md::MdProgress& p) {
+          if (abandon) throw Abandoned();
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (progress) progress(m, p);
+        },
+        checkpoints);
+    record.totals = engine->save_state(false);
+    if (saving) {  // the finished member, and its engine's totals
+      md::MdRunState done;
+      done.engine = record.totals;
+      done.so_far = record.run;
+      save(m, {true, done, 0.0});
+    }
+    out.records[std::size_t(m)] = std::move(record);
+  };
+  auto work = [&](std::size_t thread) {
+    for (std::size_t i = next++; i < to_run.size(); i = next++) {
+      if (abandon) return;
+      try {
+        run_member(to_run[i], comms[thread]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+        abandon = true;
+      }
+    }
+  };
+  if (out.threads == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t j = 0; j < comms.size(); ++j) pool.emplace_back(work, j);
+    for (auto& thread : pool) thread.join();
+  }
+  for (MPI_Comm& c : comms) MPI_Comm_free(&c);
+
+  // The first member's failure in member order (not one that stopped because of it).
+  std::exception_ptr first;
+  for (const auto& error : errors) {
+    if (!error) continue;
+    try {
+      std::rethrow_exception(error);
+    } catch (const Abandoned&) {
+      continue;
+    } catch (...) {
+      first = error;
+      break;
+    }
+  }
+  md::on_every_rank(comm, [&] {
+    if (first) std::rethrow_exception(first);
+  });
+  share_member_records(out.records, owner, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &out.checkpoints_written, 1, MPI_INT, MPI_SUM, comm);
+  return out;
+}
+
+}  // namespace granvv::app
