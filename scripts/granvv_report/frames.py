@@ -44,7 +44,8 @@ def read_frames(outdir):
     outdir = Path(outdir)
     path = next((outdir / n for n in FRAME_FILES if (outdir / n).is_file()), None)
     if path is None:
-        raise Skip("no particle file (particles.h5 or particles_m0.h5): not a particle run")
+        raise Skip("no particle frames (particles.h5 or particles_m0.h5): a particle run writes them "
+                   "with md.snapshot_interval > 0, e.g. --set md.snapshot_interval=…")
     try:
         with h5py.File(path, "r") as f:
             pos = f.get("particles/all/position/value")
