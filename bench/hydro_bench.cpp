@@ -29,7 +29,7 @@ granvv::app::HydroScene scene_of(const std::string& name, int cells,
 // The single-mode scene of the hydro's speed target: the step controls it was measured with
 // (253 steps on 2000 cells), so that figures stay comparable across changes of the defaults.
 const std::vector<std::string> kSpeedTargetSteps = {"hydro.cfl=2", "hydro.dt_max=0.05",
-                                                "hydro.max_compression=0.1"};
+                                                    "hydro.max_compression=0.1"};
 
 granvv::app::HydroScene single_mode_scene(int cells, std::vector<std::string> sets = {}) {
   sets.insert(sets.end(), kSpeedTargetSteps.begin(), kSpeedTargetSteps.end());
