@@ -18,7 +18,7 @@ FIG_WIDTH_IN = 7.6
 def disk_marker_size(Lx, axes_width_in):
     """Scatter size (points²) of a disk of diameter σ on an axis spanning Lx σ, at least a dot."""
     d_points = 72.0 * axes_width_in / Lx
-    return max(d_points ** 2, 0.3)
+    return max(d_points ** 2, 1.5)
 
 
 def strip_times(frames, profiles):
