@@ -90,6 +90,13 @@ int main(int argc, char** argv) {
       "report", "rebuild DIR/report.html from DIR/results.h5 (a run) or DIR/sweep.json (a sweep)");
   report_cmd->add_option("dir", report_dir, "output folder of a run or a sweep")->required();
 
+  std::string movie_dir, movie_out;
+  auto* movie_cmd = app.add_subcommand(
+      "movie", "animate the particle frames of the run in DIR beside the density profiles (a GIF)");
+  movie_cmd->add_option("dir", movie_dir, "output folder of a particle run that wrote frames")
+      ->required();
+  movie_cmd->add_option("--out", movie_out, "the animation, a .gif (default DIR/movie.gif)");
+
   if (argc >= 2 && argv[1][0] != '-') {  // CLI11 would only say "A subcommand is required"
     const std::string command = argv[1];
     bool known = false;
@@ -162,5 +169,10 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (*report_cmd) return report_command(report_dir);
+  if (*movie_cmd) {
+    std::vector<std::string> args{movie_dir};
+    if (!movie_out.empty()) args.insert(args.end(), {"--out", movie_out});
+    return run_python_script("particle_movie.py", args);
+  }
   return 2;
 }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "app/output_folder.hpp"
 #include "scene/case_config.hpp"
@@ -18,21 +19,25 @@ std::string shell_quote(const std::string& s) {
 }
 }  // namespace
 
-int build_report(const std::filesystem::path& dir) {
+int run_python_script(const std::string& script_name, const std::vector<std::string>& args) {
   const char* env = std::getenv("GRANVV_PYTHON");
   const std::string python = env ? env : "/usr/bin/python3";
   std::string script;
   try {
-    script = (data_directory() / "scripts" / "report.py").string();
+    script = (data_directory() / "scripts" / script_name).string();
   } catch (const ConfigError& e) {
     std::cerr << "granvv: error: " << e.what() << "\n";
     return 2;
   }
-  const std::string command =
-      shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(dir.string());
+  std::string command = shell_quote(python) + " " + shell_quote(script);
+  for (const auto& a : args) command += " " + shell_quote(a);
   const int status = std::system(command.c_str());
   if (status == -1) return 127;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+int build_report(const std::filesystem::path& dir) {
+  return run_python_script("report.py", {dir.string()});
 }
 
 int report_command(const std::filesystem::path& dir) {

@@ -1,6 +1,6 @@
 // Speed of the event-driven particle engine (docs/physics.md §10, docs/md_benchmarks.md): an
-// elastic gas of 10^4 hard disks at phi = 0.05 on one core, in collisions/s and events/s (issue
-// 13's target: >= 1e6 collisions/s), and the same gas at phi = 0.3. Run: build/granvv_bench
+// elastic gas of 10^4 hard disks at phi = 0.05 on one core, in collisions/s and events/s (the
+// target: >= 1e6 collisions/s), and the same gas at phi = 0.3. Run: build/granvv_bench
 // --benchmark_filter=EventDriven.
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // Speed of the continuum engine, as figures: wall time and cell-steps/s of the paper's
 // single-mode scene (cases/single_mode.toml) and clustering scene (cases/clustering.toml) run to
 // n_max = 1e6, and of the scheme's building blocks; the single mode and one step also with the
-// Enskog closure (docs/physics.md §9), whose cost per cell-step issue 11 bounds by 1.5 times the
+// Enskog closure (docs/physics.md §9), whose cost per cell-step the target bounds by 1.5 times the
 // dilute one. Run: build/granvv_bench (add --benchmark_repetitions=5 for spread).
 #include <benchmark/benchmark.h>
 
@@ -31,13 +31,13 @@ granvv::app::HydroScene scene_of(const std::string& name, int cells,
       CaseConfig::from_file(std::string(GRANVV_SOURCE_DIR) + "/cases/" + name + ".toml", sets));
 }
 
-// The single-mode scene of issue 10's speed target: the step controls it was measured with
+// The single-mode scene of the hydro's speed target: the step controls it was measured with
 // (253 steps on 2000 cells), so that figures stay comparable across changes of the defaults.
-const std::vector<std::string> kIssue10Steps = {"hydro.cfl=2", "hydro.dt_max=0.05",
-                                                "hydro.max_compression=0.1"};
+const std::vector<std::string> kSpeedTargetSteps = {"hydro.cfl=2", "hydro.dt_max=0.05",
+                                                    "hydro.max_compression=0.1"};
 
 granvv::app::HydroScene single_mode_scene(int cells, std::vector<std::string> sets = {}) {
-  sets.insert(sets.end(), kIssue10Steps.begin(), kIssue10Steps.end());
+  sets.insert(sets.end(), kSpeedTargetSteps.begin(), kSpeedTargetSteps.end());
   return scene_of("single_mode", cells, sets);
 }
 

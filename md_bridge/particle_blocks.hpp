@@ -1,5 +1,5 @@
 #pragma once
-// Particle frames without a gather (issue 15): under MPI each rank owns a contiguous block of
+// Particle frames without a gather: under MPI each rank owns a contiguous block of
 // particle IDs, and at a frame every rank sends its local particles to the owners of their
 // IDs, so that no rank holds more than its block and its own particles. The blocks are written
 // one file per rank and joined by a virtual dataset (h5md_frames.hpp).

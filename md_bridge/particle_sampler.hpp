@@ -20,7 +20,7 @@ struct ParticleSample {
   long long count() const { return static_cast<long long>(x.size() / 3); }
 };
 
-// Parallel sampling (issue 15). The box is cut along x into strip_count(scene) strips of equal
+// Parallel sampling. The box is cut along x into strip_count(scene) strips of equal
 // width, about kStripParticles disks each. How many disks each strip gets is drawn first, as N
 // positions from the profile from a stream seeded by (seed, "counts"), which every rank draws
 // alike (a multinomial draw, as N independent positions give); strip k then draws its disks'

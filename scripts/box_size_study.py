@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""How wide a channel a clean particle test of the single mode needs (issue 15, docs/physics.md §8).
+"""How wide a channel a clean particle test of the single mode needs (docs/physics.md §8).
 
 Reads the runs of `md_single_mode` (K = 1e-2, q = 0.05, event-driven engine) at several box
 widths Ly, one output folder per width (summary.json and results.h5 as granvv wrote them), and

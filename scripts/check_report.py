@@ -181,10 +181,10 @@ def start_chromedriver(tmp, deadline):
     """Starts chromedriver on a free port; returns (process, WebDriver). Retries a taken port."""
     if not os.access(CHROMEDRIVER, os.X_OK):
         raise BrowserError(f"{CHROMEDRIVER} not found (Debian package chromium-driver; "
-                           "scripts/setup.sh installs it)")
+                           "scripts/setup.sh --browser installs it)")
     if not os.access(CHROMIUM, os.X_OK):
         raise BrowserError(f"{CHROMIUM} not found (Debian package chromium; "
-                           "scripts/setup.sh installs it)")
+                           "scripts/setup.sh --browser installs it)")
     log_path = os.path.join(tmp, "chromedriver.log")
     for _ in range(3):
         port = free_port()

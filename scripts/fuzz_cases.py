@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Fuzz the granvv CLI with mutated case files and --set lines (issue 9).
+"""Fuzz the granvv CLI with mutated case files and --set lines.
 
 Each input is one of the shipped scenes (cases/*.toml) with mutations: a --set of a schema key
 to a hostile value (integers beyond 2^31 and 2^63, reals 0, 1e-300, 1e300, nan, inf, wrong types,

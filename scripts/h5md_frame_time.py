@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Wall time of one H5MD particle frame for 2e5 disks on 1 and 2 MPI ranks (issue 15).
+"""Wall time of one H5MD particle frame for 2e5 disks on 1 and 2 MPI ranks.
 
 Each measurement is two `granvv run md_cooling_sweep` runs of the same particles to t = 0.2
 (about 900 steps), stopping every 0.002: one writing a particle frame at every stop (101

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Strong and weak scaling of the LAMMPS bridge on 1 and 2 MPI ranks (issue 15).
+"""Strong and weak scaling of the LAMMPS bridge on 1 and 2 MPI ranks.
 
 For N = 1e5 and 2e5 disks (phi = 0.05, Ly = 100 sigma, r = 0.9, one seed) and 1 and 2 ranks:
   1. the bridge, `granvv run md_cooling_sweep` to t = 2 (about 9000 steps) in 10 segments:

@@ -533,8 +533,7 @@ TEST(CliUsage, UnknownCommandIsNamed) {
   EXPECT_EQ(r.exit_code, 2) << describe(r);
   EXPECT_EQ(r.err,
             "granvv: error: unknown command 'frobnicate'; the commands are run, resume, sweep, "
-            "atlas, list, "
-            "report (granvv --help)\n");
+            "atlas, list, report, movie (granvv --help)\n");
 }
 
 // Non-UTF-8 bytes: refused in case.name itself; a case file's name with them gives a case.name

@@ -5,7 +5,9 @@ Modules, each with one concern:
   style       matplotlib settings, units, colours and drawing helpers
   formatting  numbers and verdict badges for the page
   registry    @figure: each figure declared once with its file, page section and caption template
-  figures_hydro, figures_md, figures_compare, figures_pressure, figures_sweep, figures_transport
+  frames      the particle frames of a run (H5MD) and the density profiles drawn beside them
+  figures_hydro, figures_md, figures_compare, figures_pressure, figures_sweep, figures_transport,
+  figures_particles
               the figures of each model family (importing a module registers its figures)
   tables      the page's tables (run header, side-by-side verdict, numbers, sweep points)
   page        page assembly with the jinja2 templates beside this package

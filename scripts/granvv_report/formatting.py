@@ -10,8 +10,18 @@ from .data import num
 CMP_FIELD_HTML = {"n": "n", "v_x": "v<sub>x</sub>", "v_y": "v<sub>y</sub>", "T": "T"}
 
 
+# Powers of ten as Unicode superscripts, not <sup> tags: a number then reads the same in HTML
+# (escaped or not, inside an f-string or not) and in a matplotlib title or legend.
+_SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def power_of_ten(e):
+    """10 to the integer e as text: 10⁴, 10⁻¹⁵."""
+    return "10" + str(int(e)).translate(_SUPERSCRIPT)
+
+
 def fmt(x, digits=4):
-    """HTML-safe number: 3.183, 1.2 × 10<sup>−15</sup>, — for absent."""
+    """HTML-safe number that is also plain text: 3.183, 1.2 × 10⁻¹⁵, — for absent."""
     if x is None:
         return Markup("—")
     if isinstance(x, bool):
@@ -28,7 +38,7 @@ def fmt(x, digits=4):
     if 1e-3 <= abs(v) < 1e5 and "e" not in f"{v:.{digits}g}":
         return Markup(f"{v:.{digits}g}".replace("-", "−"))
     m, e = f"{v:.{max(digits - 2, 1)}e}".split("e")
-    return Markup(f"{m} × 10<sup>{int(e)}</sup>".replace("-", "−"))
+    return Markup(f"{m.replace('-', '−')} × {power_of_ten(e)}")
 
 
 def pct(x, digits=3):

@@ -11,7 +11,7 @@ from pathlib import Path
 import jinja2
 from markupsafe import Markup
 
-from . import figures_atlas, figures_compare, figures_hydro, figures_inertia, figures_md, figures_pressure, figures_sweep, figures_transport  # noqa: F401 - importing registers
+from . import figures_atlas, figures_compare, figures_hydro, figures_inertia, figures_md, figures_particles, figures_pressure, figures_sweep, figures_transport  # noqa: F401 - importing registers
 from .data import AtlasRun, ReportError, Run, SweepRun, is_atlas_folder, is_sweep_folder
 from .registry import draw_figures
 from .tables import (atlas_tables, compare_section, engine_tables, header_rows, snapshot_table, sweep_tables,

@@ -217,7 +217,16 @@ def md_header_rows(md, attrs, cfg_md):
     if v("atom_steps_per_second") is not None:
         parts.append(f"{fmt(v('atom_steps_per_second'), 3)} atom-steps/s")
     return [("MD status", status),
-            ("particle engine (MD, LAMMPS)", Markup(", ".join(parts)) if parts else fmt(None))]
+            (particle_engine_label(md, cfg_md), Markup(", ".join(parts)) if parts else fmt(None))]
+
+
+def particle_engine_label(md, cfg_md):
+    """The row's name with the engine that ran, as the run wrote it (summary.json's md.engine,
+    else the resolved md.engine key)."""
+    name = md.get("engine") if isinstance(md, dict) else None
+    if not isinstance(name, str) or not name:
+        name = (cfg_md or {}).get("engine")
+    return f"particle engine ({name})" if isinstance(name, str) and name else "particle engine"
 
 
 def flatten(d, prefix=""):
@@ -378,8 +387,8 @@ def atlas_tables(run):
     if rec.get("model"):
         rec_rows.append(("cheapest adequate model", _setting_text(rec.get("setting"))))
         cost = rec.get("cost") or {}
-        rec_rows.append(("its cost", f"{fmt(cost.get('wall_seconds'), 3)} s, {fmt(cost.get('work'), 3)} "
-                                     f"{cost.get('work_unit', '')}"))
+        rec_rows.append(("its cost", Markup("{} s, {} {}").format(fmt(cost.get('wall_seconds'), 3),
+                                                                  fmt(cost.get('work'), 3), cost.get('work_unit', ''))))
         ref_err = rec.get("reference_statistical_error") or {}
         for k, v in sorted((rec.get("error") or {}).items()):
             rec_rows.append((f"its error: {k}", fmt(v, 3) if k not in ref_err else
@@ -404,7 +413,8 @@ def atlas_tables(run):
         worst = max(errs.values()) if errs else None
         num = r.get("numerical_error") or {}
         rows.append([r.get("model"), _knobs_text(r) or "—",
-                     r.get("status"), fmt(r.get("wall_seconds"), 3), f"{fmt(r.get('work'), 3)} {r.get('work_unit', '')}",
+                     r.get("status"), fmt(r.get("wall_seconds"), 3),
+                     Markup("{} {}").format(fmt(r.get('work'), 3), r.get('work_unit', '')),
                      fmt(max(num.values()), 3) if num else "—", fmt(worst, 3) if worst is not None else "—",
                      f"{len(errs)}/{len(names)}", "yes" if r.get("over_resolved") else "",
                      ", ".join(r.get("pareto") or [])])

@@ -32,12 +32,12 @@ class Fmt(unittest.TestCase):
         self.assertEqual(fmt(1e-3), "0.001")  # the lower end is plain
         self.assertEqual(fmt(np.float64(12.5)), "12.5")
     def test_scientific_outside_1e_minus_3_to_1e5(self):
-        self.assertEqual(fmt(1.2e-15), f"1.20 × 10<sup>{MINUS}15</sup>")
-        self.assertEqual(fmt(-9.99e-4), f"{MINUS}9.99 × 10<sup>{MINUS}4</sup>")
-        self.assertEqual(fmt(123456.0), "1.23 × 10<sup>5</sup>")
+        self.assertEqual(fmt(1.2e-15), "1.20 × 10⁻¹⁵")
+        self.assertEqual(fmt(-9.99e-4), f"{MINUS}9.99 × 10⁻⁴")
+        self.assertEqual(fmt(123456.0), "1.23 × 10⁵")
         # 99999.5 rounds to 1e+05 at four digits: written as a power, not as "1e+05".
-        self.assertEqual(fmt(99999.5), "1.00 × 10<sup>5</sup>")
-        self.assertEqual(fmt(6.02e23, digits=2), "6.0 × 10<sup>23</sup>")  # at least one decimal
+        self.assertEqual(fmt(99999.5), "1.00 × 10⁵")
+        self.assertEqual(fmt(6.02e23, digits=2), "6.0 × 10²³")  # at least one decimal
 
     def test_non_finite_floats_are_nan_and_other_objects_their_escaped_text(self):
         self.assertEqual(fmt(float("nan")), "NaN")
