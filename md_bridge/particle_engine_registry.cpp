@@ -86,6 +86,10 @@ std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
   return engine_row(name).make(setup);
 }
 
+bool replays_given_particles(const std::string& name) {
+  return engine_row(name).given != nullptr;
+}
+
 std::optional<GivenParticles> given_particles(const std::string& name,
                                               const EngineSettings& settings,
                                               const EngineTexts& texts) {

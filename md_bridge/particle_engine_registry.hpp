@@ -36,6 +36,9 @@ std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
 // GivenParticles): N, the box and the frame times; std::nullopt for an engine that moves the
 // particles it is given at t = 0, or one without files. Throws std::invalid_argument for files
 // it refuses (naming the file and the problem) or an unknown name.
+// Whether the engine replays given particles (the recorded engine) rather than moving the
+// particles it is set up with.
+bool replays_given_particles(const std::string& name);
 std::optional<GivenParticles> given_particles(const std::string& name,
                                               const EngineSettings& settings,
                                               const EngineTexts& texts);
