@@ -13,8 +13,10 @@ namespace {
 const char* const kWho = "the recorded engine";
 // md.ensemble's own bound: the members of an ensemble.
 constexpr double kMaxRecordedMembers = 1000.0;
-// Members read per second, for the wall-time estimate: RATE_TBD.
-constexpr double kRecordedMembersPerCoreSecond = 1.0;
+// Members read per second, for the wall-time estimate of --dry-run: a member of about 200
+// disks and 20-40 frames took 0.07-0.09 s (md.wall_seconds of the round-trip test's scene and of
+// examples/lammps/disks.toml, 2026-12-04); larger files take proportionally longer.
+constexpr double kRecordedMembersPerCoreSecond = 10.0;
 
 std::vector<std::string> texts_of(const EngineTexts& texts, const std::string& key) {
   const auto found = texts.find(key);
