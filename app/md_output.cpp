@@ -9,6 +9,7 @@
 #include "fields/hdf5_datasets.hpp"
 #include "hydro/haff.hpp"
 #include "md_bridge/hard_disk_theory.hpp"
+#include "scene/initial_provenance.hpp"
 #include "scene/json_numbers.hpp"
 
 namespace granvv::app {
@@ -28,6 +29,23 @@ void add_engine_details(json& block, const md::EngineDetails& details) {
     std::visit([&](const auto& value) { block[json::json_pointer(pointer)] = value; },
                detail.value);
   }
+}
+
+// The files given particles were read from, each with its member, size and SHA-256.
+json given_files_summary(const md::GivenParticles& given) {
+  json files = json::array();
+  for (std::size_t m = 0; m < given.members.size(); ++m) {
+    for (const std::string& path : given.members[m]) {
+      std::error_code ec;
+      const auto absolute = std::filesystem::absolute(path, ec);
+      files.push_back({{"member", m},
+                       {"path", path},
+                       {"absolute_path", ec ? path : absolute.lexically_normal().string()},
+                       {"bytes", std::filesystem::file_size(path, ec)},
+                       {"sha256", file_sha256(path)}});
+    }
+  }
+  return files;
 }
 
 }  // namespace
@@ -107,6 +125,7 @@ json md_summary(const MdScene& scene, const MdOutcome& out) {
   };
   block.update(md_cost_summary(out));
   add_engine_details(block, out.engine_details);
+  if (scene.given) block["input_files"] = given_files_summary(*scene.given);
   block["checkpoints"] = {
       {"interval_seconds", scene.checkpoint_interval},
       {"written", out.checkpoints_written},

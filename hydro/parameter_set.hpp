@@ -15,10 +15,11 @@ namespace granvv::hydro {
 using NamedReals = std::map<std::string, double>;
 
 // A real, an integer, a text (a formula, a file path, a choice), a table of named reals, a
-// switch, or a list of reals or of integers (an atlas grid); the alternative is the parameter's
-// type.
-using ParameterValue = std::variant<double, long long, std::string, NamedReals, bool,
-                                    std::vector<double>, std::vector<long long>>;
+// switch, a list of reals or of integers (an atlas grid), or a list of texts (file paths); the
+// alternative is the parameter's type.
+using ParameterValue =
+    std::variant<double, long long, std::string, NamedReals, bool, std::vector<double>,
+                 std::vector<long long>, std::vector<std::string>>;
 
 // Allowed values: min/max bounds, each open or closed; no bound = unbounded. For a text
 // parameter, `choices` (empty = any text). For a list, the bounds hold for each element, and
@@ -68,6 +69,9 @@ struct ParameterSpec {
   bool is_real_list() const { return std::holds_alternative<std::vector<double>>(default_value); }
   bool is_integer_list() const {
     return std::holds_alternative<std::vector<long long>>(default_value);
+  }
+  bool is_text_list() const {
+    return std::holds_alternative<std::vector<std::string>>(default_value);
   }
   bool operator==(const ParameterSpec& o) const;
 };

@@ -41,9 +41,24 @@ inline double required_setting(const EngineSettings& settings, const std::string
   return found->second;
 }
 
+// The case's text and list-of-text settings for the engine by key ("md.recorded.files" -> the
+// paths; a text key as a list of one), the engine's own keys only.
+using EngineTexts = std::map<std::string, std::vector<std::string>>;
+
+// What the files of an engine that replays particles another program moved (the recorded
+// engine) fix before any run, in MD units (sigma = 1 and the files' time): N, the box, the frame
+// times (every member's, the same for each) and the files of each member of the ensemble.
+struct GivenParticles {
+  long long particles = 0;
+  double box_length = 0.0, box_width = 0.0;
+  std::vector<double> times;
+  std::vector<std::vector<std::string>> members;
+};
+
 struct ParticleEngineSetup {
   ParticleScene scene;
   EngineSettings settings;
+  EngineTexts texts;
   std::string log_dir;             // folder for the engine's own log ("" = no log)
   MPI_Comm comm = MPI_COMM_WORLD;  // collective over these ranks
 };

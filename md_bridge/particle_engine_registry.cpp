@@ -5,6 +5,7 @@
 
 #include "md_bridge/event_driven_engine.hpp"
 #include "md_bridge/lammps_engine.hpp"
+#include "md_bridge/recorded_engine.hpp"
 
 namespace granvv::md {
 
@@ -14,15 +15,18 @@ using Maker = std::unique_ptr<ParticleEngine> (*)(const ParticleEngineSetup&);
 using WorkEstimator = ParticleWorkEstimate (*)(const ParticleWorkQuestion&);
 
 using KeyDeclaration = const EngineKeys& (*)();
+using GivenReader = std::optional<GivenParticles> (*)(const EngineSettings&, const EngineTexts&);
 
-// One row per engine: its md.engine value, its maker, its work estimate, its own keys and its
-// atlas grid's keys (nullptr: none).
+// One row per engine: its md.engine value, its maker, its work estimate, its own keys, its
+// atlas grid's keys (nullptr: none) and, for an engine that replays given particles, what its
+// files fix (nullptr: the engine moves particles sampled from the scene).
 struct EngineRow {
   std::string name;
   Maker make;
   WorkEstimator work;
   KeyDeclaration keys;
   KeyDeclaration atlas_keys = nullptr;
+  GivenReader given = nullptr;
 };
 
 const std::vector<EngineRow>& engines() {
@@ -30,6 +34,8 @@ const std::vector<EngineRow>& engines() {
       {"lammps", &LammpsEngine::make, &lammps_work, &LammpsEngine::keys, &LammpsEngine::atlas_keys},
       {"event_driven", &EventDrivenEngine::make, &event_driven_work, &EventDrivenEngine::keys,
        &EventDrivenEngine::atlas_keys},
+      {"recorded", &RecordedEngine::make, &RecordedEngine::work, &RecordedEngine::keys, nullptr,
+       &RecordedEngine::given},
   };
   return rows;
 }
@@ -78,6 +84,18 @@ const std::vector<ParticleEngineKey>& particle_engine_keys() {
 std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
                                                      const ParticleEngineSetup& setup) {
   return engine_row(name).make(setup);
+}
+
+bool replays_given_particles(const std::string& name) {
+  return engine_row(name).given != nullptr;
+}
+
+std::optional<GivenParticles> given_particles(const std::string& name,
+                                              const EngineSettings& settings,
+                                              const EngineTexts& texts) {
+  const EngineRow& row = engine_row(name);
+  if (!row.given) return std::nullopt;
+  return row.given(settings, texts);
 }
 
 ParticleWorkEstimate estimate_particle_work(const std::string& name,

@@ -2,6 +2,7 @@
 // The particle engines by name: the case key md.engine selects one, and with it the estimate
 // of a run's work and the engine's own case keys.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,17 @@ const std::vector<ParticleEngineKey>& particle_engine_keys();
 // engine refuses.
 std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
                                                      const ParticleEngineSetup& setup);
+
+// What the files of an engine that replays given particles fix (particle_engine.hpp,
+// GivenParticles): N, the box and the frame times; std::nullopt for an engine that moves the
+// particles it is given at t = 0, or one without files. Throws std::invalid_argument for files
+// it refuses (naming the file and the problem) or an unknown name.
+// Whether the engine replays given particles (the recorded engine) rather than moving the
+// particles it is set up with.
+bool replays_given_particles(const std::string& name);
+std::optional<GivenParticles> given_particles(const std::string& name,
+                                              const EngineSettings& settings,
+                                              const EngineTexts& texts);
 
 // The engine's estimate of a run's work (particle_work.hpp); throws std::invalid_argument for
 // an unknown name.

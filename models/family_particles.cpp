@@ -175,7 +175,9 @@ void ParticleFamily::run(const AtlasScene& scene, const CaseConfig& config, Atla
 const ModelFamily* particle_family(const std::string& engine) {
   // The engines with a family of their own; every other registered engine gets the plain one.
   static const std::map<std::string, const ModelFamily* (*)()> own = {
-      {"lammps", &lammps_family}, {"event_driven", &event_driven_family}};
+      {"lammps", &lammps_family},
+      {"event_driven", &event_driven_family},
+      {"recorded", &recorded_family}};
   if (const auto it = own.find(engine); it != own.end()) return it->second();
   static std::deque<ParticleFamily> plain;
   for (const auto& f : plain) {

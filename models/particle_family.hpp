@@ -47,5 +47,6 @@ class ParticleFamily : public ModelFamily {
 // The families of the engines that have their own (models/family_<engine>.cpp).
 const ModelFamily* lammps_family();
 const ModelFamily* event_driven_family();
+const ModelFamily* recorded_family();
 
 }  // namespace granvv::app

@@ -74,6 +74,7 @@ ValueType value_type_of(const hydro::ParameterSpec& spec) {
   if (spec.is_boolean()) return kBoolean;
   if (spec.is_real_list()) return kReals;
   if (spec.is_integer_list()) return kIntegers;
+  if (spec.is_text_list()) return kStrings;
   return kReal;
 }
 

@@ -70,6 +70,9 @@ struct Default {
   Default(const std::vector<long long>& v) : kind(v.empty() ? Kind::empty_array : Kind::value) {
     value = v;
   }
+  Default(const std::vector<std::string>& v) : kind(v.empty() ? Kind::empty_array : Kind::value) {
+    value = v;
+  }
   static Default required() { return Default(Kind::required); }
   static Default file_stem() { return Default(Kind::file_stem); }
   static Default empty_array() { return Default(Kind::empty_array); }

@@ -12,6 +12,8 @@
 #include "compare/ensemble_fields.hpp"
 #include "compare/particle_ensemble.hpp"
 #include "compare/signal_to_noise.hpp"
+#include "fields/constants.hpp"
+#include "fields/field_series.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -203,6 +205,60 @@ void run_members_in_turn(const MdScene& scene, md::ParticleEngine& engine,
   }
 }
 
+// The scene of given particles: their N and box, the case's restitution.
+md::ParticleScene given_scene(const md::GivenParticles& given, double restitution) {
+  md::ParticleScene sc;
+  sc.particles = given.particles;
+  sc.box_length = given.box_length;
+  sc.box_width = given.box_width;
+  sc.area_fraction = double(given.particles) * kPi / (4.0 * given.box_length * given.box_width);
+  sc.restitution = restitution;
+  return sc;
+}
+
+// The times of given particles (docs/recorded.md): a run stops only at their frames, so every
+// md.output_times must be a frame time (it becomes that frame's time exactly); md.t_end, left
+// at its default, is the last frame's and may not lie beyond it; md.sample_interval, left at
+// its default, samples every frame; the ensemble is the members of the files.
+void take_given_times(const CaseConfig& c, MdScene& s) {
+  auto& spec = s.spec;
+  const md::GivenParticles& given = *s.given;
+  const std::vector<double>& frames = given.times;
+  if (frames.size() < 2) {
+    refuse(c, "md.engine",
+           "the recorded files hold " + std::to_string(frames.size()) +
+               " frame; a run needs at least two (" + given.members.front().front() + ")");
+  }
+  double spacing = 0.0;
+  for (std::size_t i = 1; i < frames.size(); ++i)
+    spacing = std::max(spacing, frames[i] - frames[i - 1]);
+  if (c.origin("md.t_end") == "default") {
+    spec.t_end = frames.back();
+  } else if (spec.t_end > frames.back() && !fields::same_time(spec.t_end, frames.back())) {
+    refuse(c, "md.t_end", "beyond the last recorded frame, at t = " + format_real(frames.back()));
+  }
+  if (c.origin("md.sample_interval") == "default") spec.sample_interval = spacing;
+  for (double& t : spec.output_times) {
+    const auto nearest = std::min_element(frames.begin(), frames.end(), [t](double a, double b) {
+      return std::abs(a - t) < std::abs(b - t);
+    });
+    if (!fields::same_time(*nearest, t)) {
+      refuse(c, "md.output_times",
+             "t = " + format_real(t) + " is not a recorded frame time (the nearest is " +
+                 format_real(*nearest) +
+                 "); the snapshots of recorded particles are at their frames' own times");
+    }
+    t = *nearest;
+  }
+  const int members = int(given.members.size());
+  if (c.origin("md.ensemble") != "default" && s.ensemble != members) {
+    refuse(c, "md.ensemble",
+           "the recorded files hold " + std::to_string(members) +
+               " members (one per entry of md.recorded.files)");
+  }
+  s.ensemble = members;
+}
+
 }  // namespace
 
 SignalToNoise initial_signal_to_noise(const MdScene& scene) {
@@ -225,15 +281,38 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   if (!c.boolean("md.enabled")) return std::nullopt;
   MdScene s;
   auto& spec = s.spec;
+  s.engine = c.string("md.engine");
+  // The [md] keys every scene has and the engine's own (not another engine's).
+  for (const KeySpec& key : case_schema()) {
+    const auto owner = key_owner(key.key);
+    const std::string section = key.section();
+    if ((section != "md" && section.rfind("md.", 0) != 0) || (owner && owner->model != s.engine))
+      continue;
+    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
+    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
+    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
+    if (owner && key.type == ValueType::string) s.engine_texts[key.key] = {c.string(key.key)};
+    if (owner && key.type == ValueType::string_array) s.engine_texts[key.key] = c.strings(key.key);
+  }
   const double r_key = c.real("md.restitution");
   const double r = r_key > 0.0 ? r_key : 1.0 - 2.0 * hydro.physics.q;
-  const double phi = c.real("md.area_fraction"), ly = c.real("md.box_width");
-  const long long n = c.int_value("md.particles");
-  spec.scene = n > 0 ? md::scene_from_particles(n, phi, ly, r)
-                     : md::scene_from_scaled(hydro.physics.K, 0.5 * (1.0 - r), phi, ly);
+  try {
+    s.given = md::given_particles(s.engine, s.engine_settings, s.engine_texts);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
+  if (s.given) {
+    spec.scene = given_scene(*s.given, r);
+  } else {
+    const double phi = c.real("md.area_fraction"), ly = c.real("md.box_width");
+    const long long n = c.int_value("md.particles");
+    spec.scene = n > 0 ? md::scene_from_particles(n, phi, ly, r)
+                       : md::scene_from_scaled(hydro.physics.K, 0.5 * (1.0 - r), phi, ly);
+  }
   const std::string problem = md::scene_problem(spec.scene);
   if (!problem.empty()) {
-    refuse(c, scene_problem_key(c, spec.scene), "impossible particle scene: " + problem);
+    refuse(c, s.given ? "md.engine" : scene_problem_key(c, spec.scene),
+           "impossible particle scene: " + problem);
   }
   spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
   spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
@@ -244,17 +323,8 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   spec.kernel = c.string("md.kernel");
   spec.kernel_width = c.real("md.kernel_width");
   s.ensemble = c.int_value("md.ensemble");
-  s.engine = c.string("md.engine");
   s.checkpoint_interval = c.real("md.checkpoint_interval");
   s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
-  // The [md] keys every scene has and the engine's own (not another engine's).
-  for (const KeySpec& key : case_schema()) {
-    const auto owner = key_owner(key.key);
-    if (key.section() != "md" || (owner && owner->model != s.engine)) continue;
-    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
-    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
-    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
-  }
   spec.snapshot_interval = c.real("md.snapshot_interval");
   const double t_haff = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
   if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
@@ -270,6 +340,7 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
     spec.sample_interval *= t0;
     for (double& t : spec.output_times) t *= t0;
   }
+  if (s.given) take_given_times(c, s);
   if (spec.sample_interval > spec.t_end) {
     throw ConfigError(c.origin("md.sample_interval") +
                       ": md.sample_interval = " + format_real(spec.sample_interval) +
@@ -309,6 +380,7 @@ std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std:
   md::ParticleEngineSetup setup;
   setup.scene = scene.spec.scene;
   setup.settings = scene.engine_settings;
+  setup.texts = scene.engine_texts;
   setup.log_dir = log_dir;
   setup.comm = comm;
   return md::make_particle_engine(scene.engine, setup);

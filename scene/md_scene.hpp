@@ -30,8 +30,13 @@ struct MdScene {
   std::string engine;                      // md.engine
   double checkpoint_interval = 0.0;        // md.checkpoint_interval, wall seconds (0 = none)
   double haff_mode_energy_fraction = 0.0;  // md.haff_mode_energy_fraction
-  // Every number and boolean of [md] that is not another engine's own key, by key.
+  // Every number and boolean of [md] that is not another engine's own key, by key; the engine's
+  // own texts and lists of texts.
   md::EngineSettings engine_settings;
+  md::EngineTexts engine_texts;
+  // What the files of an engine that replays given particles fix (the recorded engine): the
+  // scene's N and box, the frame times (the only times its run can stop at) and the members.
+  std::optional<md::GivenParticles> given;
   // The work, memory and wall time of one rank (md_bridge/particle_work.hpp).
   ParticleRunEstimate estimate;
   // Members at a time in threads on each rank, for an engine whose members are independent

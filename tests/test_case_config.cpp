@@ -589,7 +589,7 @@ TEST(ModelKeys, TheSchemaHasEveryEnginesAndClosuresOwnKeysAsDeclared) {
   }
   // Both engines have keys of their own (the contact of LAMMPS, the collapse rules of the hard
   // disks), and the key list of --dry-run (the resolved case) holds them.
-  EXPECT_EQ(engines_with_keys, (std::set<std::string>{"lammps", "event_driven"}));
+  EXPECT_EQ(engines_with_keys, (std::set<std::string>{"lammps", "event_driven", "recorded"}));
   const std::string resolved = load(kMinimalCase).resolved_toml();
   for (const char* leaf :
        {"max_overlap", "steps_per_contact", "adaptive_stiffness", "collapse_speed",
