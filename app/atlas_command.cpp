@@ -7,6 +7,7 @@
 #include <iostream>
 #include <thread>
 
+#include "app/mpi_ranks.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/summary.hpp"
@@ -38,6 +39,9 @@ void check_options(const AtlasOptions& options) {
   }
 }
 
+int weigh_into_folder(const AtlasOptions& options, const AtlasSetup& setup,
+                      std::chrono::steady_clock::time_point start);
+
 }  // namespace
 
 int atlas_command(const AtlasOptions& options) {
@@ -51,6 +55,19 @@ int atlas_command(const AtlasOptions& options) {
     report_input_error(e);
     return 2;
   }
+  // Under mpirun rank 0 alone runs the atlas (its folder, lock, runs and files), and every rank
+  // ends with its exit code (app/mpi_ranks.hpp).
+  return on_rank_zero_alone(join_ranks(false),
+                            [&] { return weigh_into_folder(options, *setup, start); });
+}
+
+namespace {
+
+// The atlas in its folder: the lock, the runs (cached in DIR/runs/), atlas.h5, atlas.json and
+// the page; the command's exit code.
+int weigh_into_folder(const AtlasOptions& options, const AtlasSetup& setup_,
+                      std::chrono::steady_clock::time_point start) {
+  const AtlasSetup* setup = &setup_;
   const fs::path dir = options.out_dir.empty() ? fs::path("out") / (setup->scene.name + "-atlas")
                                                : fs::path(options.out_dir);
   std::optional<FolderLock> lock;  // one atlas at a time in a folder
@@ -104,5 +121,7 @@ int atlas_command(const AtlasOptions& options) {
   }
   return 0;
 }
+
+}  // namespace
 
 }  // namespace granvv::app

@@ -2,7 +2,9 @@
 
 #include <mpi.h>
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "md_bridge/mpi_environment.hpp"
 
@@ -16,6 +18,10 @@ bool started_by_mpi_launcher() {
   }
   return false;
 }
+
+// How often a waiting rank looks whether the writer has finished: a blocking MPI call would
+// spin a core (Open MPI busy-polls) that the writer's own runs need.
+constexpr auto kWaitingPoll = std::chrono::milliseconds(50);
 
 }  // namespace
 
@@ -42,6 +48,31 @@ std::string writers_value(const Ranks& ranks, std::string value) {
   value.resize(std::size_t(length));
   MPI_Bcast(value.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
   return value;
+}
+
+int writers_exit_code(const Ranks& ranks, int code) {
+  if (ranks.size == 1) return code;
+  MPI_Request request;
+  MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return code;
+    std::this_thread::sleep_for(kWaitingPoll);
+  }
+}
+
+int on_rank_zero_alone(const Ranks& ranks, const std::function<int()>& work) {
+  if (ranks.size == 1) return work();
+  if (!ranks.writer()) return writers_exit_code(ranks, 1);
+  md::set_particle_ranks(MPI_COMM_SELF);
+  int code = 1;
+  try {
+    code = work();
+  } catch (...) {
+    writers_exit_code(ranks, 1);
+    throw;
+  }
+  return writers_exit_code(ranks, code);
 }
 
 }  // namespace granvv::app

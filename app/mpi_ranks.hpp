@@ -1,7 +1,9 @@
 #pragma once
-// The ranks of a `granvv run` under mpirun: every rank runs the scene, rank 0 alone writes, and
-// a failure of the writer (an unusable folder, a write error) is shared so that no rank goes on
-// alone into a collective step.
+// The ranks of a command under mpirun: for `granvv run` (and each point of `granvv sweep`) every
+// rank runs the scene, rank 0 alone writes, and a failure of the writer (an unusable folder, a
+// write error) is shared so that no rank goes on alone into a collective step; `granvv atlas`
+// runs on rank 0 alone.
+#include <functional>
 #include <string>
 
 namespace granvv::app {
@@ -21,5 +23,15 @@ bool all_ranks_ok(const Ranks& ranks, bool ok);
 
 // The writer's value on every rank (collective when size > 1): a path only rank 0 knows.
 std::string writers_value(const Ranks& ranks, std::string value);
+
+// A command that rank 0 runs alone under mpirun (the atlas, whose choice of runs depends on the
+// wall time each takes, which ranks would not agree on): rank 0 runs `work` with its particle
+// engines on itself only (md::set_particle_ranks), the other ranks wait without spinning, and
+// every rank returns work's exit code (1 if it threw). Without mpirun, work() itself.
+int on_rank_zero_alone(const Ranks& ranks, const std::function<int()>& work);
+
+// The writer's exit code on every rank (collective when size > 1), the others waiting without
+// spinning: the end of a command whose outputs rank 0 alone writes.
+int writers_exit_code(const Ranks& ranks, int code);
 
 }  // namespace granvv::app

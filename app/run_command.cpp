@@ -32,6 +32,7 @@
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
 #include "scene/initial_provenance.hpp"
+#include "scene/input_fingerprint.hpp"
 #include "scene/interruption.hpp"
 #include "scene/md_checkpoint.hpp"
 #include "scene/md_scene.hpp"
@@ -274,13 +275,13 @@ void compare_closures(const CompareScene& compare, const HydroScene& first,
 
 // A resume continues the checkpoints of the same resolved case (every rank reads them): why it
 // cannot (empty: it can), with the checkpoints it continues in resume_from.
-std::string resume_problem(const CaseConfig& config, const fs::path& dir,
-                           const std::string& checkpointed, const MdScene& md_scene,
-                           const Ranks& ranks, std::vector<MemberCheckpoint>& resume_from) {
-  const std::string difference = checkpointed_case_difference(checkpointed, config);
+std::string resume_problem(const nlohmann::json& inputs, const fs::path& dir,
+                           const MdScene& md_scene, const Ranks& ranks,
+                           std::vector<MemberCheckpoint>& resume_from) {
+  const std::string difference = checkpoint_inputs_difference(dir, inputs);
   if (!difference.empty()) {
     return "cannot resume: the checkpoint in " + checkpoint_folder(dir).string() +
-           " is of another case (" + difference + "); run without --resume to start anew";
+           " was made from other inputs (" + difference + "); run without --resume to start anew";
   }
   try {
     resume_from = load_member_checkpoints(dir, md_scene.ensemble, ranks.rank, ranks.size);
@@ -334,7 +335,7 @@ MdOutcome run_particle_part(RunContext& c) {
             checkpoint_folder(c.dir).string());
       }
       try {
-        start_checkpoints(c.dir, c.config.resolved_toml());
+        start_checkpoints(c.dir, c.config.resolved_toml(), c.summary["inputs"]);
       } catch (const std::exception& e) {
         c.log.warn("no checkpoints for this run: {}", e.what());
         checkpoint_folder_ok = false;
@@ -575,9 +576,12 @@ int run_command(const RunOptions& options) {
   }
   std::vector<MemberCheckpoint> resume_from;
   const std::optional<std::string> checkpointed = checkpointed_case(dir);
+  // What this run reads (its resolved case and the SHA-256 of its files): recorded in the
+  // summary and the checkpoints, so that a result is reused or continued only for these inputs.
+  const nlohmann::json inputs = input_fingerprint(config);
   const std::string resume_problem =
       options.resume && checkpointed && md_scene
-          ? app::resume_problem(config, dir, *checkpointed, *md_scene, ranks, resume_from)
+          ? app::resume_problem(inputs, dir, *md_scene, ranks, resume_from)
           : std::string();
   if (!all_ranks_ok(ranks, resume_problem.empty())) {
     if (writer) std::cerr << "granvv: error: " << resume_problem << "\n";
@@ -607,6 +611,7 @@ int run_command(const RunOptions& options) {
       {"output_dir", dir.string()}, {"hydro", nullptr},   {"md", nullptr},
       {"compare", nullptr}};
   if (writer) summary["run_id"] = folder->run_id();
+  summary["inputs"] = inputs;
   if (!hydro::initial_files(scene.initial).empty()) {  // the files the initial state is read from
     summary["initial"] = initial_provenance(scene.initial);
     for (const auto& file : summary["initial"]["files"]) {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "app/mpi_ranks.hpp"
 #include "app/output_folder.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
@@ -19,6 +20,7 @@
 #include "scene/case_catalog.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
+#include "scene/input_fingerprint.hpp"
 #include "scene/interruption.hpp"
 #include "scene/json_numbers.hpp"
 #include "scene/md_checkpoint.hpp"
@@ -113,13 +115,16 @@ std::string read_text(const fs::path& file) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// A point folder holds a finished run of exactly this resolved case: a re-run of the sweep
-// keeps it instead of running it again.
-bool point_is_complete(const fs::path& point_dir, const std::string& resolved_toml) {
+// Why a point folder does not hold a finished run of exactly this resolved case and these
+// input files ("" if it does: a re-run of the sweep keeps it instead of running it again).
+std::string point_not_complete(const fs::path& point_dir, const std::string& resolved_toml,
+                               const json& inputs) {
   const json summary = read_json_or_null(point_dir / "summary.json");
   const json status = value_or_null(summary, "status");
-  return (status == "ok" || status == "singularity" || status == "closure_limit") &&
-         read_text(point_dir / "case.toml") == resolved_toml;
+  if (!(status == "ok" || status == "singularity" || status == "closure_limit"))
+    return "no finished run";
+  if (read_text(point_dir / "case.toml") != resolved_toml) return "another case";
+  return fingerprint_difference(value_or_null(summary, "inputs"), inputs);
 }
 
 // Two values that resolve to the same number, or that would share a folder, are one point.
@@ -199,9 +204,10 @@ json cooling_analysis(const json& points, double power_r_min, double sigmas) {
 
 // One point of the sweep: its run (or the finished run already in its folder, or its
 // checkpoints continued), and its row of sweep.json; status is the run's exit code.
-json sweep_point(const SweepOptions& options, const fs::path& dir, const SweptKey& swept,
-                 const std::vector<std::string>& fixed, std::size_t index, double numeric_value,
-                 const std::string& resolved, int& status) {
+json sweep_point(const SweepOptions& options, const Ranks& ranks, const fs::path& dir,
+                 const SweptKey& swept, const std::vector<std::string>& fixed, std::size_t index,
+                 double numeric_value, const std::string& resolved, const json& inputs,
+                 int& status) {
   const std::string& value = swept.values[index];
   RunOptions run;
   run.case_name = options.case_name;
@@ -210,20 +216,31 @@ json sweep_point(const SweepOptions& options, const fs::path& dir, const SweptKe
   run.sets.push_back(swept.key + "=" + value);
   run.quiet = options.quiet;
   run.report = options.report;
-  const bool reused = point_is_complete(run.out_dir, resolved);
-  // A point stopped midway continues from its checkpoints if they are of this very case.
-  const std::optional<std::string> checkpointed = checkpointed_case(run.out_dir);
-  run.resume = !reused && checkpointed &&
-               checkpointed_case_difference(*checkpointed,
-                                            CaseConfig::from_string(resolved, run.out_dir, {}))
-                   .empty();
-  std::cerr << "sweep: point " << index + 1 << "/" << swept.values.size() << ": " << swept.key
-            << " = " << value
-            << (reused       ? ": already complete in "
-                : run.resume ? ": continues its checkpoint in "
-                             : " -> ")
-            << run.out_dir << "\n";
+  // Rank 0 decides (every rank then runs the point, or none): its folder is the one written.
+  const std::string not_complete =
+      writers_value(ranks, ranks.writer() ? point_not_complete(run.out_dir, resolved, inputs) : "");
+  const bool reused = not_complete.empty();
+  // A point stopped midway continues from its checkpoints if they are of these very inputs.
+  run.resume =
+      !reused &&
+      writers_value(ranks, ranks.writer() && checkpointed_case(run.out_dir) &&
+                                   checkpoint_inputs_difference(run.out_dir, inputs).empty()
+                               ? "resume"
+                               : "") == "resume";
+  // A finished run of this case made from other files is run again, and the log says why.
+  const bool inputs_changed =
+      !reused && not_complete != "no finished run" && not_complete != "another case";
+  if (ranks.writer())
+    std::cerr << "sweep: point " << index + 1 << "/" << swept.values.size() << ": " << swept.key
+              << " = " << value
+              << (reused       ? ": already complete in "
+                  : run.resume ? ": continues its checkpoint in "
+                  : inputs_changed
+                      ? ": its inputs changed since (" + not_complete + "), runs again -> "
+                      : " -> ")
+              << run.out_dir << "\n";
   status = reused ? 0 : run_command(run);
+  if (!ranks.writer()) return nullptr;  // the writer's summary.json may not be there yet
   json point = {{"value", numeric_value},
                 {"dir", fs::path(run.out_dir).filename().string()},
                 {"exit_code", status},
@@ -245,6 +262,12 @@ json sweep_point(const SweepOptions& options, const fs::path& dir, const SweptKe
   return point;
 }
 
+// The points of the sweep and sweep.json (rank 0's), once its folder is locked; the exit code.
+int sweep_points(const SweepOptions& options, const Ranks& ranks, const fs::path& dir,
+                 const SweptKey& swept, const std::vector<std::string>& fixed,
+                 const std::string& case_name, const std::vector<double>& numeric_values,
+                 const std::vector<std::string>& resolved, const std::vector<json>& inputs);
+
 }  // namespace
 
 int sweep_command(const SweepOptions& options) {
@@ -254,6 +277,7 @@ int sweep_command(const SweepOptions& options) {
   std::string case_name;
   std::vector<double> numeric_values;  // each value as the case resolved it
   std::vector<std::string> resolved;   // each point's resolved case (its case.toml)
+  std::vector<json> inputs;            // and the fingerprint of its inputs
   try {
     swept = split_sweep(options.sets, fixed);
     const CaseSource source = locate_case(options.case_name);
@@ -270,6 +294,7 @@ int sweep_command(const SweepOptions& options) {
                                    ? double(config.integer(swept.key))
                                    : config.real(swept.key));
       resolved.push_back(config.resolved_toml());
+      inputs.push_back(input_fingerprint(config));
     }
     refuse_repeated_values(swept, numeric_values);
   } catch (const ConfigError& e) {
@@ -281,14 +306,36 @@ int sweep_command(const SweepOptions& options) {
   const fs::path dir = options.out_dir.empty()
                            ? fs::path("out") / (case_name + "-sweep-" + key_name)
                            : fs::path(options.out_dir);
+  // Under mpirun every rank runs each point (its particle part is collective) and rank 0 alone
+  // holds the lock and writes sweep.json; every rank ends with rank 0's exit code.
+  const Ranks ranks = join_ranks(false);
   std::optional<FolderLock> lock;  // one sweep at a time in a folder
-  try {
-    lock.emplace(dir);
-  } catch (const OutputFolderError& e) {
-    std::cerr << "granvv: error: " << e.what() << "\n";
+  std::string lock_error;
+  if (ranks.writer()) {
+    try {
+      lock.emplace(dir);
+    } catch (const OutputFolderError& e) {
+      lock_error = e.what();
+    }
+  }
+  if (!all_ranks_ok(ranks, lock_error.empty())) {
+    if (ranks.writer()) std::cerr << "granvv: error: " << lock_error << "\n";
     return 2;
   }
-  catch_interruptions();
+  // As in `granvv run`: several ranks must not stop at their own safe points.
+  if (ranks.size == 1) catch_interruptions();
+  const int exit_code =
+      sweep_points(options, ranks, dir, swept, fixed, case_name, numeric_values, resolved, inputs);
+  return writers_exit_code(ranks, exit_code);
+}
+
+namespace {
+
+int sweep_points(const SweepOptions& options, const Ranks& ranks, const fs::path& dir,
+                 const SweptKey& swept, const std::vector<std::string>& fixed,
+                 const std::string& case_name, const std::vector<double>& numeric_values,
+                 const std::vector<std::string>& resolved, const std::vector<json>& inputs) {
+  const bool writer = ranks.writer();
 
   // 2. One run per value; sweep.json is rewritten after every point, so a stopped sweep keeps
   // what it finished. Its status says "incomplete" until the sweep ends (it is true both while
@@ -306,11 +353,12 @@ int sweep_command(const SweepOptions& options) {
                 {"cooling", nullptr}};
   int exit_code = 0;
   try {
-    write_sweep_json(dir, sweep);
+    if (writer) write_sweep_json(dir, sweep);
     for (std::size_t i = 0; i < swept.values.size() && !interruption_signal(); ++i) {
       int status = 0;
-      const json point =
-          sweep_point(options, dir, swept, fixed, i, numeric_values[i], resolved[i], status);
+      const json point = sweep_point(options, ranks, dir, swept, fixed, i, numeric_values[i],
+                                     resolved[i], inputs[i], status);
+      if (!writer) continue;
       const std::string& value = swept.values[i];
       if (status != 0) exit_code = 1;
       sweep["points"].push_back(point);
@@ -332,6 +380,7 @@ int sweep_command(const SweepOptions& options) {
         end_process_now(1);
       }
     }
+    if (!writer) return 0;  // rank 0's exit code is the sweep's
     if (interruption_signal()) {
       sweep["status"] = "interrupted";
       write_sweep_json(dir, sweep);
@@ -372,5 +421,7 @@ int sweep_command(const SweepOptions& options) {
   }
   return exit_code;
 }
+
+}  // namespace
 
 }  // namespace granvv::app

@@ -23,6 +23,8 @@ std::vector<AtlasRun> AtlasRunner::run(const std::vector<AtlasSetting>& settings
       if (interruption_signal()) return;
       runs[i] = run_atlas_setting(scene_, settings[i], cache_);
       std::lock_guard<std::mutex> lock(mutex_);
+      if (!runs[i].cache_note.empty())
+        std::fprintf(stderr, "atlas: %s\n", runs[i].cache_note.c_str());
       ++done_;
       made_ += !runs[i].cached && runs[i].status != "refused";
       left -= estimates[i];

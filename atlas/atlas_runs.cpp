@@ -1,5 +1,6 @@
 #include "atlas/atlas_runs.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include "models/model_family.hpp"
 #include "scene/atomic_file.hpp"
 #include "scene/case_config.hpp"
+#include "scene/input_fingerprint.hpp"
 #include "scene/interruption.hpp"
 #include "scene/json_numbers.hpp"
 
@@ -20,7 +22,7 @@ namespace {
 
 using atlas::kNoValue;
 // Bumped whenever what a cached run holds changes, so that old cache files are not read.
-constexpr int kCacheFormat = 2;
+constexpr int kCacheFormat = 3;
 
 // A resolved case's text without its comment lines (where the case came from, the --set list)
 // and without one of its tables: a run does not depend on the [atlas] table (the grids and what
@@ -98,7 +100,7 @@ fields::FieldSeries series_from_json(const json& j) {
   return f;
 }
 
-json run_json(const AtlasRun& r) {
+json run_json(const AtlasRun& r, const json& inputs) {
   json j = {{"format", kCacheFormat},
             {"status", r.status},
             {"reason", r.reason},
@@ -118,13 +120,102 @@ json run_json(const AtlasRun& r) {
   j["scalar_errors"] = errors;
   j["fields"] = r.fields ? series_json(*r.fields) : json(nullptr);
   j["monitors"] = r.monitor_crossings;
+  j["inputs"] = inputs;
   return j;
 }
 
-std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting) {
-  if (!j.is_object() || j.value("format", 0) != kCacheFormat) return std::nullopt;
+bool is_number_or_null(const json& x) {
+  return x.is_number() || x.is_null();
+}
+
+// "" if `a` is an array of numbers or nulls (of `size` entries unless size < 0).
+std::string numbers_problem(const json& j, const char* key, long long size = -1) {
+  if (!j.contains(key) || !j[key].is_array()) return std::string(key) + " is not a list";
+  for (const auto& x : j[key]) {
+    if (!is_number_or_null(x)) return std::string(key) + " holds a value that is not a number";
+  }
+  if (size >= 0 && (long long)j[key].size() != size)
+    return std::string(key) + " has " + std::to_string(j[key].size()) + " entries, not " +
+           std::to_string(size);
+  return "";
+}
+
+std::string object_of_numbers_problem(const json& j, const char* key) {
+  if (!j.contains(key) || !j[key].is_object()) return std::string(key) + " is not an object";
+  for (const auto& [k, v] : j[key].items()) {
+    if (!is_number_or_null(v)) return std::string(key) + "." + k + " is not a number";
+  }
+  return "";
+}
+
+// "" if a snapshot of the entry's fields is what run_json writes for the atlas's bins.
+std::string snapshot_problem(const json& s, double t, int bins) {
+  if (!s.is_object() || !s.contains("t") || !s["t"].is_number())
+    return "a snapshot without its time";
+  if (s["t"].get<double>() != t) return "a snapshot at another time than its times list";
+  for (const auto& c : fields::field_columns()) {
+    for (const std::string name : {std::string(c.name), std::string(c.name) + "_stderr"}) {
+      if (!s.contains(name)) continue;
+      if (!s[name].is_array() || s[name].size() != std::size_t(bins))
+        return "the snapshot column " + name + " does not have one value per bin";
+      for (const auto& x : s[name]) {
+        if (!is_number_or_null(x)) return "the snapshot column " + name + " holds a non-number";
+      }
+    }
+  }
+  return "";
+}
+
+// Why a cache entry is not a run that run_json wrote for this scene ("" if it is): every value
+// of the right type, the energies one per compared time, the times among the scene's and the
+// fields one snapshot per time on the scene's bins. An edited or damaged entry is run again.
+std::string entry_problem(const json& j, const AtlasScene& scene) {
+  if (!j.is_object()) return "not a JSON object";
+  if (j.value("format", 0) != kCacheFormat) return "another cache format";
+  for (const char* key : {"status", "reason", "work_unit"}) {
+    if (!j.contains(key) || !j[key].is_string()) return std::string(key) + " is not a text";
+  }
+  for (const char* key : {"wall_seconds", "work"}) {
+    if (!j.contains(key) || !j[key].is_number()) return std::string(key) + " is not a number";
+  }
+  if (!j.contains("rejected_steps") || !j["rejected_steps"].is_number_integer())
+    return "rejected_steps is not an integer";
+  if (auto p = numbers_problem(j, "times"); !p.empty()) return p;
+  const json& times = j["times"];
+  if (times.size() > scene.times.size()) return "more times than the atlas compares";
+  for (const auto& t : times) {
+    if (!t.is_number() ||
+        std::find(scene.times.begin(), scene.times.end(), t.get<double>()) == scene.times.end())
+      return "a time the atlas does not compare";
+  }
+  const auto n = (long long)times.size();
+  for (const char* key : {"thermal", "flow", "thermal_error", "flow_error"}) {
+    if (auto p = numbers_problem(j, key, n); !p.empty()) return p;
+  }
+  for (const char* key : {"scalars", "scalar_errors"}) {
+    if (auto p = object_of_numbers_problem(j, key); !p.empty()) return p;
+  }
   // A run cached before its monitors were kept is run again.
-  if (!j.contains("monitors")) return std::nullopt;
+  if (auto p = object_of_numbers_problem(j, "monitors"); !p.empty()) return p;
+  if (!j.contains("fields")) return "fields is missing";
+  const json& f = j["fields"];
+  if (f.is_null()) return n == 0 ? "" : "times without fields";
+  if (!f.is_object() || !f.contains("bins") || !f["bins"].is_number_integer() ||
+      f["bins"].get<long long>() != scene.bins)
+    return "fields not on the atlas's " + std::to_string(scene.bins) + " bins";
+  if (!f.contains("snapshots") || !f["snapshots"].is_array() ||
+      (long long)f["snapshots"].size() != n)
+    return "fields without one snapshot per time";
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (auto p = snapshot_problem(f["snapshots"][k], times[k].get<double>(), scene.bins);
+        !p.empty())
+      return p;
+  }
+  return "";
+}
+
+// The run of an entry that entry_problem accepted.
+AtlasRun run_from_json(const json& j, const AtlasSetting& setting) {
   AtlasRun r;
   r.setting = setting;
   r.status = j["status"].get<std::string>();
@@ -143,8 +234,8 @@ std::optional<AtlasRun> run_from_json(const json& j, const AtlasSetting& setting
   r.thermal_error = numbers_from(j["thermal_error"]);
   r.flow_error = numbers_from(j["flow_error"]);
   if (!j["fields"].is_null()) r.fields = series_from_json(j["fields"]);
-  if (j.contains("monitors"))
-    r.monitor_crossings = j["monitors"].get<std::map<std::string, double>>();
+  for (const auto& [k, v] : j["monitors"].items())
+    r.monitor_crossings[k] = v.is_number() ? v.get<double>() : kNoValue;
   r.cached = true;
   return r;
 }
@@ -171,24 +262,29 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     run.reason = e.what();
     return run;
   }
+  // The run's inputs: its resolved case (no [atlas] table) and every file it reads. The cache
+  // file is named by both, and holds them, so that a changed file is a new run.
+  const json inputs = input_fingerprint(*config, {"atlas"});
   std::string key = without_table(config->resolved_toml(), "atlas");
   key += "\n# atlas: " + setting.model + " bins " + std::to_string(scene.bins) + " times";
   for (double t : scene.times) key += " " + format_real(t);
+  for (const auto& file : inputs["files"])
+    key += "\n# file " + file["path"].get<std::string>() + " " + file["sha256"].get<std::string>();
   const fs::path cache_file = cache_dir / (text_hash(key) + ".json");
-  {
-    std::ifstream in(cache_file);
-    if (in) {
-      try {
-        json j;
-        in >> j;
-        if (auto cached = run_from_json(j, setting)) {
-          family.judge(scene, *cached);
-          return *cached;
-        }
-      } catch (const std::exception&) {
-        // an unreadable cache file is run again and rewritten
-      }
+  if (std::ifstream in(cache_file); in) {
+    const json j = json::parse(in, nullptr, false);
+    std::string problem = j.is_discarded() ? "not JSON" : entry_problem(j, scene);
+    if (problem.empty()) {
+      const std::string changed = fingerprint_difference(j["inputs"], inputs);
+      if (!changed.empty()) problem = "made from other inputs: " + changed;
     }
+    if (problem.empty()) {
+      AtlasRun cached = run_from_json(j, setting);
+      family.judge(scene, cached);
+      return cached;
+    }
+    run.cache_note = "the cache entry " + cache_file.string() + " is not used (" + problem +
+                     "): the setting runs again";
   }
   try {
     family.run(scene, *config, run);
@@ -201,7 +297,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
     run.reason = e.what();
     return run;
   }
-  write_file_atomically(cache_file, run_json(run).dump() + "\n");
+  write_file_atomically(cache_file, run_json(run, inputs).dump() + "\n");
   family.judge(scene, run);
   return run;
 }

@@ -70,7 +70,9 @@ class EventDrivenEngine final : public ParticleEngine {
   double time_resolution() const override { return 0.0; }
   // Processes every event up to t and brings all disks to t. Throws std::runtime_error
   // (event-rate runaway) if the segment needs more than md.max_collision_rate N (t - now) + N
-  // collisions: inelastic collapse, which the collapse rule should have prevented.
+  // collisions, or if any 10 N of its collisions take less than 10 / md.max_collision_rate of
+  // time (the rule in event_driven_engine.cpp): inelastic collapse, which the collapse rule
+  // should have prevented. Calls the run's within-segment check every 65536 events.
   double advance_to(double t) override;
   long long steps() const override { return events_; }  // events of this run
   // The events and the stops: a stop, which brings every disk to its time, is an event of the

@@ -198,6 +198,18 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     checkpoints.save(state);  // every rank: each may hold its own block of the particles
   };
 
+  // Inside a long segment the engine reports the time it has reached: the progress callback
+  // (the app's progress lines and its stop at a signal) is called there too.
+  struct WithinSegment {
+    ParticleEngine& engine;
+    ~WithinSegment() { engine.set_within_segment({}); }
+  } within{engine};
+  if (progress) {
+    engine.set_within_segment([&](double now) {
+      progress({now, spec.t_end, result.series.T.empty() ? 0.0 : result.series.T.back(), wall(),
+                engine.steps()});
+    });
+  }
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step
     // Next stop: a sample time or an output time, whichever comes first.
     double target = std::min(spec.t_end, t + spec.sample_interval);

@@ -47,4 +47,16 @@ void MpiEnvironment::ensure() {
   static MpiEnvironment guard;
 }
 
+namespace {
+MPI_Comm particle_comm = MPI_COMM_WORLD;
+}  // namespace
+
+MPI_Comm particle_ranks() {
+  return particle_comm;
+}
+
+void set_particle_ranks(MPI_Comm comm) {
+  particle_comm = comm;
+}
+
 }  // namespace granvv::md

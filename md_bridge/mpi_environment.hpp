@@ -30,4 +30,10 @@ class MpiEnvironment {
   bool initialised_here_ = false;
 };
 
+// The ranks a particle engine spans unless its setup says otherwise (ParticleEngineSetup::comm):
+// MPI_COMM_WORLD, or MPI_COMM_SELF in a process whose command rank 0 runs alone under mpirun
+// (`granvv atlas`, app/mpi_ranks.hpp).
+MPI_Comm particle_ranks();
+void set_particle_ranks(MPI_Comm comm);
+
 }  // namespace granvv::md

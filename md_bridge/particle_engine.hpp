@@ -19,6 +19,7 @@
 
 #include "fields/model_result.hpp"
 #include "hydro/parameter_set.hpp"
+#include "md_bridge/mpi_environment.hpp"
 #include "md_bridge/particle_sampler.hpp"
 #include "md_bridge/particle_scene.hpp"
 
@@ -59,8 +60,8 @@ struct ParticleEngineSetup {
   ParticleScene scene;
   EngineSettings settings;
   EngineTexts texts;
-  std::string log_dir;             // folder for the engine's own log ("" = no log)
-  MPI_Comm comm = MPI_COMM_WORLD;  // collective over these ranks
+  std::string log_dir;               // folder for the engine's own log ("" = no log)
+  MPI_Comm comm = particle_ranks();  // collective over these ranks (mpi_environment.hpp)
 };
 
 // The result of calibrating or verifying the collision rule before any run.
@@ -166,6 +167,12 @@ class ParticleEngine {
   virtual double time_resolution() const = 0;
   // Advances to the reachable time nearest t (at least one step past now); returns it.
   virtual double advance_to(double t) = 0;
+  // Called by an engine whose segment can take long (the event-driven one, every few ten
+  // thousand events) with the time it has reached, from inside advance_to, so that the
+  // run can print progress and stop at a signal there (by throwing; the segment is then
+  // abandoned and the engine must be set up or restored before it is used again).
+  using WithinSegment = std::function<void(double t)>;
+  void set_within_segment(WithinSegment check) { within_segment_ = std::move(check); }
   // The engine's own adjustments after a segment has been sampled (LAMMPS: a softer contact
   // as the gas cools).
   virtual void between_segments() {}
@@ -215,6 +222,14 @@ class ParticleEngine {
   virtual void add_totals(const EngineState& /*other*/) {
     throw std::logic_error(name() + " engine: its members do not run apart");
   }
+
+ protected:
+  void within_segment(double t) const {
+    if (within_segment_) within_segment_(t);
+  }
+
+ private:
+  WithinSegment within_segment_;
 };
 
 }  // namespace granvv::md

@@ -58,6 +58,8 @@ struct AtlasRun {
   // monitor's name and the first time it did (scaled units).
   std::map<std::string, double> monitor_crossings;
   bool cached = false;  // taken from the cache, not run now
+  // Why a cache entry of this setting was not used (edited, damaged, or of other inputs).
+  std::string cache_note;
 };
 
 // The scene an atlas weighs: the case with the user's --set overrides, and what every run shares.

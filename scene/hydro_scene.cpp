@@ -191,9 +191,7 @@ std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene) {
   return hydro::make_closure(scene.closure, closure_parameters(scene));
 }
 
-HydroScene hydro_scene_from(const CaseConfig& c) {
-  HydroScene s;
-  s.physics = {c.real("physics.K"), c.real("physics.q")};
+hydro::InitialParameters initial_parameters_from(const CaseConfig& c) {
   hydro::ParameterSet values;
   for (const auto& key : hydro::initial_parameter_keys()) {
     const std::string name = "initial." + key.spec.name;
@@ -207,7 +205,13 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
       values.set(key.spec.name, c.real(name));
     }
   }
-  s.initial = hydro::initial_parameters(c.string("initial.type"), std::move(values));
+  return hydro::initial_parameters(c.string("initial.type"), std::move(values));
+}
+
+HydroScene hydro_scene_from(const CaseConfig& c) {
+  HydroScene s;
+  s.physics = {c.real("physics.K"), c.real("physics.q")};
+  s.initial = initial_parameters_from(c);
   const auto& ini = s.initial;
   read_closure(c, s);
   s.cells = c.int_value("hydro.cells");

@@ -66,6 +66,9 @@ std::string closure_problem_key(const std::string& closure,
                                 const hydro::ClosureParameterProblem& problem);
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene);
 
+// The initial condition of a resolved case: initial.type and its initial.* parameters.
+hydro::InitialParameters initial_parameters_from(const CaseConfig& config);
+
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
 // engine cannot run (meshes that do not nest, fields that are negative somewhere...).
 HydroScene hydro_scene_from(const CaseConfig& config);

@@ -9,10 +9,8 @@
 
 namespace granvv::app {
 
-// Lower-case hex SHA-256 of a file's bytes; throws std::runtime_error if it cannot be read.
-std::string file_sha256(const std::filesystem::path& file);
-
-// {"type": ..., "files": [{"path", "absolute_path", "bytes", "sha256"}, ...]}.
+// {"type": ..., "files": [{"path", "absolute_path", "bytes", "sha256"}, ...]} (the SHA-256 of
+// scene/input_fingerprint.hpp).
 nlohmann::json initial_provenance(const hydro::InitialParameters& initial);
 
 }  // namespace granvv::app

@@ -14,11 +14,31 @@
 #include "fields/hdf5_datasets.hpp"
 #include "md_bridge/every_rank.hpp"
 #include "scene/atomic_file.hpp"
+#include "scene/input_fingerprint.hpp"
 
 namespace granvv::app {
 namespace fs = std::filesystem;
 
 namespace {
+
+fs::path inputs_file(const fs::path& out_dir) {
+  return checkpoint_folder(out_dir) / "inputs.json";
+}
+
+std::optional<std::string> inputs_text(const fs::path& out_dir) {
+  std::ifstream in(inputs_file(out_dir), std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// What a member file carries to tie it to the inputs of its folder: the SHA-256 of inputs.json.
+constexpr const char* kInputsAttribute = "inputs_sha256";
+std::string inputs_stamp(const fs::path& out_dir) {
+  const std::optional<std::string> text = inputs_text(out_dir);
+  return text ? text_sha256(*text) : std::string("none");
+}
 
 fs::path member_file(const fs::path& out_dir, int member) {
   return checkpoint_folder(out_dir) / ("member_" + std::to_string(member) + ".h5");
@@ -66,11 +86,12 @@ void write_particles(const fs::path& file, const md::EngineState& e) {
   h5.close();
 }
 
-void write_state(const fs::path& file, const MemberCheckpoint& c) {
+void write_state(const fs::path& file, const MemberCheckpoint& c, const std::string& stamp) {
   const md::MdRunState& s = c.state;
   const md::MdRunResult& r = s.so_far;
   H5::H5File h5(file.string(), H5F_ACC_TRUNC);
   H5::Group root = h5.openGroup("/");
+  h5::write_attribute(root, kInputsAttribute, stamp);
   h5::write_attribute(root, "finished", c.finished ? 1.0 : 0.0);
   h5::write_attribute(root, "particle_part_wall_seconds", c.particle_part_wall_seconds);
   h5::write_attribute(root, "t", s.t);
@@ -123,6 +144,10 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
   md::MdRunResult& r = s.so_far;
   const H5::H5File h5(file.string(), H5F_ACC_RDONLY);
   const H5::Group root = h5.openGroup("/");
+  if (!root.attrExists(kInputsAttribute) ||
+      h5::read_string_attribute(root, kInputsAttribute) != inputs_stamp(out_dir))
+    throw std::runtime_error("it was not written for the inputs of " +
+                             inputs_file(out_dir).string());
   c.finished = h5::read_double_attribute(root, "finished") != 0.0;
   c.particle_part_wall_seconds = h5::read_double_attribute(root, "particle_part_wall_seconds");
   s.t = h5::read_double_attribute(root, "t");
@@ -181,39 +206,21 @@ std::optional<std::string> checkpointed_case(const fs::path& out_dir) {
   return text.str();
 }
 
-std::string checkpointed_case_difference(const std::string& checkpointed_case,
-                                         const CaseConfig& config) {
-  static const std::set<std::string> outside_the_results{
-      "md.checkpoint_interval", "md.accept_long_run", "hydro.progress_seconds"};
-  std::map<std::string, std::string> before, now;
-  try {
-    for (auto& [key, value] :
-         CaseConfig::from_string(checkpointed_case, "the checkpoint", {}).flattened())
-      before[key] = value;
-  } catch (const ConfigError& e) {
-    return std::string("its case.toml does not parse (") + e.what() + ")";
-  }
-  for (auto& [key, value] : config.flattened()) now[key] = value;
-  for (const auto& [key, value] : now) {
-    if (outside_the_results.count(key)) continue;
-    const auto found = before.find(key);
-    const std::string was = found == before.end() ? "(absent)" : found->second;
-    if (was != value) return key + " = " + was + " in the checkpoint, " + value + " now";
-  }
-  for (const auto& [key, value] : before) {
-    if (!outside_the_results.count(key) && !now.count(key))
-      return key + " = " + value + " in the checkpoint, absent now";
-  }
-  return "";
+std::string checkpoint_inputs_difference(const fs::path& out_dir, const nlohmann::json& now) {
+  const std::optional<std::string> recorded = inputs_text(out_dir);
+  if (!recorded) return "it has no record of its inputs (" + inputs_file(out_dir).string() + ")";
+  return fingerprint_difference(nlohmann::json::parse(*recorded, nullptr, false), now);
 }
 
-void start_checkpoints(const fs::path& out_dir, const std::string& resolved_case) {
+void start_checkpoints(const fs::path& out_dir, const std::string& resolved_case,
+                       const nlohmann::json& inputs) {
   remove_checkpoints(out_dir);
   const fs::path folder = checkpoint_folder(out_dir);
   std::error_code error;
   fs::create_directories(folder, error);
   if (error) throw std::runtime_error("cannot make " + folder.string() + ": " + error.message());
   write_file_atomically(folder / "case.toml", resolved_case);
+  write_file_atomically(inputs_file(out_dir), inputs.dump(1) + "\n");
 }
 
 void save_member_checkpoint(const fs::path& out_dir, int member, const MemberCheckpoint& c,
@@ -224,7 +231,9 @@ void save_member_checkpoint(const fs::path& out_dir, int member, const MemberChe
   const long long step = c.state.so_far.steps;
   const auto write_member = [&] {
     if (rank != 0) return;
-    write_replacing(member_file(out_dir, member), [&](const fs::path& f) { write_state(f, c); });
+    const std::string stamp = inputs_stamp(out_dir);
+    write_replacing(member_file(out_dir, member),
+                    [&](const fs::path& f) { write_state(f, c, stamp); });
     // The member file names this step's blocks now: the earlier ones go.
     std::error_code ignored;
     const std::string prefix = block_prefix(member), own = prefix + std::to_string(step) + ".";

@@ -2,9 +2,12 @@
 // Checkpoints of a case's particle part (docs/outputs.md, "Checkpoints and resume"). They live in
 // DIR/.granvv-checkpoint/ beside the outputs, outside the staging folder, so that they outlast a
 // killed or interrupted run:
-//   case.toml          the resolved case they belong to; a resume must resolve to the same text
+//   case.toml          the resolved case they belong to (what `granvv resume` runs)
+//   inputs.json        the fingerprint of the inputs they were made from (the resolved case and
+//                      the SHA-256 of every file it reads): a resume must have the same
 //   member_<m>.h5      ensemble member m: its finished result, or the state its run last saved
-//                      (md_bridge/md_run.hpp MdRunState), each file replaced whole by a rename
+//                      (md_bridge/md_run.hpp MdRunState), each file replaced whole by a rename;
+//                      it carries the SHA-256 of inputs.json, and is not read under another
 //   member_<m>.step<S>.rank<k>.h5  under MPI, rank k's block of the particles of member m's
 //                      state at step S (EngineState::particle_blocks > 1), written by rank k
 //   particles*.h5      the members' H5MD particle files while the particle part runs
@@ -12,6 +15,7 @@
 #include <mpi.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,15 +31,17 @@ std::filesystem::path checkpoint_folder(const std::filesystem::path& out_dir);
 // The resolved case of the checkpoints in out_dir, if there are any.
 std::optional<std::string> checkpointed_case(const std::filesystem::path& out_dir);
 
-// "" if the checkpointed case (its case.toml text) and config resolve to the same run, keys
-// that do not change results (md.checkpoint_interval, hydro.progress_seconds) aside; else the
-// first key that differs, with both values.
-std::string checkpointed_case_difference(const std::string& checkpointed_case,
-                                         const CaseConfig& config);
+// "" if the checkpoints in out_dir were made from the inputs whose fingerprint is `now`
+// (scene/input_fingerprint.hpp: the resolved case, keys outside the results aside, and every
+// file it reads); else one phrase naming what changed (a key with both values, a file whose
+// SHA-256 differs, a checkpoint without a record of its inputs).
+std::string checkpoint_inputs_difference(const std::filesystem::path& out_dir,
+                                         const nlohmann::json& now);
 
-// Removes any earlier checkpoints and starts a folder for resolved_case. Throws
-// std::runtime_error if it cannot be written.
-void start_checkpoints(const std::filesystem::path& out_dir, const std::string& resolved_case);
+// Removes any earlier checkpoints and starts a folder for resolved_case, with the fingerprint of
+// its inputs (inputs.json). Throws std::runtime_error if it cannot be written.
+void start_checkpoints(const std::filesystem::path& out_dir, const std::string& resolved_case,
+                       const nlohmann::json& inputs);
 
 // One member's checkpoint: finished (state.so_far is its result, state.engine the engine's
 // totals after it, without particles) or in progress (the run's state at a sample).

@@ -620,6 +620,215 @@ class Resume(FolderState):
         self.assertFalse(summary(d)["md"]["checkpoints"]["resumed"])
 
 
+def write_table(path, temperature):
+    """A four-row CSV table of uniform density and temperature `temperature` (mean density 1)."""
+    rows = "".join(f"{x}, 1, 0, {temperature}\n" for x in (-0.375, -0.125, 0.125, 0.375))
+    Path(path).write_text("x, n, v_x, T\n" + rows)
+
+
+# A particle run of 400 disks started from a table (its T column sets the disks' temperature).
+def md_from_table(table):
+    return MD_RESUMABLE + ["--set", "initial.type=table", "--set", f"initial.from={table}",
+                           "--set", "md.checkpoint_interval=1000"]
+
+
+class InputFingerprints(FolderState):
+    """Caches, reused sweep points and checkpoints know the case and the files they were made
+    from (scene/input_fingerprint.hpp): changed inputs run again, or a resume is refused."""
+
+    ATLAS = ["haff", "--budget", "3", "--jobs", "1", "--quiet", "--no-report"]
+
+    def atlas(self, d, *extra):
+        return subprocess.run([GRANVV, "atlas"] + self.ATLAS + list(extra) + ["--out", str(d)],
+                              capture_output=True, text=True, timeout=TIMEOUT)
+
+    def made_now(self, stderr):
+        line = [l for l in stderr.splitlines() if l.startswith("atlas: wrote")][0]
+        return int(line.split(", ")[-1].split()[0])
+
+    def test_an_atlas_runs_again_when_its_table_changed(self):
+        table, d = self.tmp / "profile.csv", self.tmp / "atlas"
+        write_table(table, 1.0)
+        args = ["--set", "initial.type=table", "--set", f"initial.from={table}"]
+        r = self.atlas(d, *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGreater(self.made_now(r.stderr), 0)
+        r = self.atlas(d, *args)  # the same inputs: every run from the cache
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.made_now(r.stderr), 0, r.stderr)
+        write_table(table, 2.0)
+        r = self.atlas(d, *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGreater(self.made_now(r.stderr), 0, r.stderr)
+
+    def test_an_edited_atlas_cache_entry_runs_again(self):
+        d = self.tmp / "atlas"
+        r = self.atlas(d)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        entries = sorted((d / "runs").glob("*.json"))
+        self.assertTrue(entries)
+        edits = [lambda e: e.update(times=[]), lambda e: e.update(thermal="x"),
+                 lambda e: e["fields"].update(bins=3) if e["fields"] else e.update(times=[7.0]),
+                 lambda e: e.update(inputs={"case": {}, "files": []})]
+        for entry, edit in zip(entries, edits):
+            e = json.loads(entry.read_text())
+            edit(e)
+            entry.write_text(json.dumps(e))
+        r = self.atlas(d)
+        self.assertEqual(r.returncode, 0, r.stderr)  # no crash
+        self.assertEqual(r.stderr.count("is not used"), min(len(entries), len(edits)), r.stderr)
+        self.assertEqual(self.made_now(r.stderr), min(len(entries), len(edits)), r.stderr)
+        self.assertTrue(json.loads((d / "atlas.json").read_text()))
+
+    def test_a_sweep_runs_a_point_again_when_its_table_changed(self):
+        table, d = self.tmp / "profile.csv", self.tmp / "sweep"
+        write_table(table, 1.0)
+        args = [GRANVV, "sweep"] + QUICK + ["--set", "initial.type=table", "--set",
+                                            f"initial.from={table}", "--set", "hydro.cells=32,48",
+                                            "--out", str(d)]
+        r = subprocess.run(args, capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = subprocess.run(args, capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual([q["reused"] for q in json.loads((d / "sweep.json").read_text())["points"]],
+                         [True, True])
+        write_table(table, 2.0)
+        r = subprocess.run(args, capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr.count("its inputs changed since (the file"), 2, r.stderr)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual([q["reused"] for q in sw["points"]], [False, False])
+        self.assertEqual(sw["status"], "ok")
+
+    def stopped_particle_run(self, args, d):
+        p = start(args + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: frames_started(d)))
+        time.sleep(0.5)
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + signal.SIGINT, err)
+        self.assertTrue((d / ".granvv-checkpoint" / "member_0.h5").exists())
+
+    def resume(self, d):
+        return subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
+                              capture_output=True, text=True, timeout=TIMEOUT)
+
+    def test_a_resume_after_its_table_changed_is_refused(self):
+        table, d = self.tmp / "profile.csv", self.tmp / "out"
+        write_table(table, 1.0)
+        self.stopped_particle_run(md_from_table(table), d)
+        write_table(table, 2.0)
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn(f"the file {table} changed", r.stderr)
+        write_table(table, 1.0)  # the same bytes again: the checkpoint continues
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(self.assert_consistent(d, "ok")["md"]["checkpoints"]["resumed"])
+
+    def test_a_resume_of_an_edited_checkpoint_case_is_refused(self):
+        d = self.tmp / "out"
+        self.stopped_particle_run(MD_RESUMABLE + ["--set", "md.checkpoint_interval=1000"], d)
+        case = d / ".granvv-checkpoint" / "case.toml"
+        text = case.read_text()
+        self.assertIn("restitution = 0.9", text)
+        case.write_text(text.replace("restitution = 0.9", "restitution = 0.5", 1))
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("md.restitution = 0.9 then, 0.5 now", r.stderr)
+        # A member file of another checkpoint (other inputs) is not continued either.
+        case.write_text(text)
+        inputs = d / ".granvv-checkpoint" / "inputs.json"
+        inputs.write_text(inputs.read_text() + " ")
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn("not written for the inputs", r.stderr)
+
+
+# Inelastic collapse in the event-driven engine: restitution 0.1 without the collapse rule in a
+# gas at area fraction 0.3 (10^4 disks, md_haff's box). With segments of 20 time units the
+# segment's own budget alone (md.max_collision_rate N dt = 2e8 collisions) took many minutes.
+COLLAPSE = ["md_haff", "--set", "md.engine=event_driven", "--set", "physics.q=0.45",
+            "--set", "md.restitution=0.1", "--set", "md.collapse_speed=0",
+            "--set", "md.area_fraction=0.3", "--set", "md.sample_interval=20",
+            "--quiet", "--no-report"]
+
+
+class EventDrivenSegments(FolderState):
+    """Inside a segment of the event-driven engine the run looks at signals and progress, and a
+    collapse (events piling up while the clock stalls) ends the run (md_bridge/event_driven_engine)."""
+
+    def test_inelastic_collapse_ends_the_run_with_its_reason(self):
+        d = self.tmp / "out"
+        begin = time.monotonic()
+        r = run(COLLAPSE + ["--out", str(d)])
+        self.assertEqual(r.returncode, 1, r.stderr)
+        s = summary(d)
+        self.assertEqual(s["status"], "failed")
+        self.assertIn("event-rate runaway", s["error"])
+        self.assertIn("inelastic collapse", s["error"])
+        # 10^5 collisions make the rule's window: about 2 s (measured on an idle core), where
+        # the run went on for minutes before.
+        self.assertLess(time.monotonic() - begin, 60)
+
+    def test_sigint_inside_a_long_segment_stops_the_run(self):
+        d = self.tmp / "out"
+        # One segment of 5000 time units of a nearly elastic gas at area fraction 0.3: about
+        # 2.5e7 collisions (a minute at 4.5e5 collisions/s) between two samples.
+        p = start(["md_haff", "--set", "md.engine=event_driven", "--set", "md.ensemble=1",
+                   "--set", "md.restitution=0.99", "--set", "md.area_fraction=0.3",
+                   "--set", "md.t_end=5000", "--set", "md.sample_interval=5000",
+                   "--set", "md.output_times=[0.0,5000.0]", "--set", "compare.enabled=false",
+                   "--quiet", "--no-report", "--out", str(d)])
+        time.sleep(4.0)  # the hydro runs and the disks are set up within about 2 s
+        self.assertIsNone(p.poll())
+        p.send_signal(signal.SIGINT)
+        stopped = time.monotonic()
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 128 + signal.SIGINT, err)
+        self.assertLess(time.monotonic() - stopped, 10.0)  # within one check of 65536 events
+        self.assertEqual(summary(d / "interrupted-run")["status"], "interrupted")
+
+
+class MpiCommands(FolderState):
+    """`granvv atlas` and `granvv sweep` under mpirun: rank 0 alone locks and writes, every rank
+    ends with its exit code (app/mpi_ranks.hpp)."""
+
+    MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2"]
+
+    def test_an_atlas_under_mpirun_writes_its_atlas(self):
+        d = self.tmp / "atlas"
+        r = subprocess.run(self.MPIRUN + [GRANVV, "atlas"] + InputFingerprints.ATLAS +
+                           ["--out", str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("another granvv process", r.stderr)
+        self.assertEqual(r.stderr.count("atlas: wrote"), 1, r.stderr)
+        self.assertIn("ladder", json.loads((d / "atlas.json").read_text()))
+
+    def test_a_sweep_under_mpirun_completes(self):
+        d = self.tmp / "sweep"
+        r = subprocess.run(self.MPIRUN + [GRANVV, "sweep"] + QUICK +
+                           ["--set", "hydro.cells=32,48", "--out", str(d)],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual(sw["status"], "ok")
+        self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok"])
+        self.assertEqual(r.stderr.count("sweep: wrote"), 1, r.stderr)
+
+    def test_a_particle_sweep_under_mpirun_completes(self):
+        d = self.tmp / "sweep"
+        r = subprocess.run(self.MPIRUN + [GRANVV, "sweep"] + MD_QUICK +
+                           ["--set", "md.seed=1,2", "--out", str(d)],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        sw = json.loads((d / "sweep.json").read_text())
+        self.assertEqual(sw["status"], "ok")
+        self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok"])
+
+
 if __name__ == "__main__":
     GRANVV = str(Path(sys.argv.pop(1)).resolve())
     unittest.main(verbosity=2)
