@@ -17,6 +17,7 @@
 #include "compare/sample_average.hpp"
 #include "compare/signal_to_noise.hpp"
 #include "md_bridge/md_run.hpp"
+#include "md_bridge/mpi_environment.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
 #include "scene/md_checkpoint.hpp"
@@ -49,9 +50,10 @@ struct MdScene {
 // engine sees them.
 std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
 
-// The scene's engine; its log goes into log_dir ("" = none). Opens nothing yet.
+// The scene's engine; its log goes into log_dir ("" = none), collective over comm (by default
+// the particle ranks, md_bridge/mpi_environment.hpp). Opens nothing yet.
 std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir,
-                                                MPI_Comm comm = MPI_COMM_WORLD);
+                                                MPI_Comm comm = md::particle_ranks());
 
 // Member m's H5MD particle file: spec.h5md_path, with _m<m> before its extension in an ensemble
 // ("" without frames).
