@@ -14,6 +14,68 @@
 #include "scene/case_config.hpp"
 #include "scene/md_checkpoint.hpp"
 
+namespace {
+using namespace granvv::app;
+
+// CLI11 would only say "A subcommand is required" for a misspelt command: name the commands.
+bool command_is_known(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return true;
+  const std::string command = argv[1];
+  bool known = false;
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+    known |= sub->get_name() == command;
+  }
+  if (!known) {
+    report_input_error(ConfigError("unknown command '" + abbreviated(command) +
+                                   "'; the commands are " + join(names, ", ") +
+                                   " (granvv --help)"));
+  }
+  return known;
+}
+
+// `granvv resume DIR`: the run of the case its checkpoint holds, continued.
+int resume_command(const std::string& dir, bool quiet, bool report, int jobs) {
+  const std::filesystem::path case_file = checkpoint_folder(dir) / "case.toml";
+  if (!std::filesystem::is_regular_file(case_file)) {
+    report_input_error(ConfigError("granvv resume: " + abbreviated(dir) +
+                                   " holds no checkpoint (no " + abbreviated(case_file.string()) +
+                                   "); only particle runs with md.checkpoint_interval > 0 "
+                                   "leave one"));
+    return 2;
+  }
+  RunOptions resumed;
+  resumed.case_name = case_file.string();
+  resumed.out_dir = dir;
+  resumed.quiet = quiet;
+  resumed.report = report;
+  resumed.resume = true;
+  resumed.jobs = jobs;
+  const int code = run_command(resumed);
+  if (hdf5_broken()) end_process_now(code);
+  return code;
+}
+
+// `granvv list`: the scenes of cases/ with their descriptions.
+int list_command() {
+  std::vector<SceneListing> scenes;
+  try {
+    scenes = list_scenes();
+  } catch (const ConfigError& e) {
+    report_input_error(e);
+    return 2;
+  }
+  for (const auto& s : scenes) {
+    std::cout << s.name << "  " << s.description;
+    if (!s.reference.empty()) std::cout << "  [" << s.reference << "]";
+    std::cout << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace granvv::app;
   CLI::App app{"granvv: granular hydrodynamics verified against exact solutions and MD"};
@@ -97,21 +159,7 @@ int main(int argc, char** argv) {
       ->required();
   movie_cmd->add_option("--out", movie_out, "the animation, a .gif (default DIR/movie.gif)");
 
-  if (argc >= 2 && argv[1][0] != '-') {  // CLI11 would only say "A subcommand is required"
-    const std::string command = argv[1];
-    bool known = false;
-    std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-      names.push_back(sub->get_name());
-      known |= sub->get_name() == command;
-    }
-    if (!known) {
-      report_input_error(ConfigError("unknown command '" + abbreviated(command) +
-                                     "'; the commands are " + join(names, ", ") +
-                                     " (granvv --help)"));
-      return 2;
-    }
-  }
+  if (!command_is_known(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -125,26 +173,7 @@ int main(int argc, char** argv) {
     if (hdf5_broken()) end_process_now(code);
     return code;
   }
-  if (*resume_cmd) {
-    const std::filesystem::path case_file = checkpoint_folder(resume_dir) / "case.toml";
-    if (!std::filesystem::is_regular_file(case_file)) {
-      report_input_error(ConfigError("granvv resume: " + abbreviated(resume_dir) +
-                                     " holds no checkpoint (no " + abbreviated(case_file.string()) +
-                                     "); only particle runs with md.checkpoint_interval > 0 "
-                                     "leave one"));
-      return 2;
-    }
-    RunOptions resumed;
-    resumed.case_name = case_file.string();
-    resumed.out_dir = resume_dir;
-    resumed.quiet = resume_quiet;
-    resumed.report = !resume_no_report;
-    resumed.resume = true;
-    resumed.jobs = resume_jobs;
-    const int code = run_command(resumed);
-    if (hdf5_broken()) end_process_now(code);
-    return code;
-  }
+  if (*resume_cmd) return resume_command(resume_dir, resume_quiet, !resume_no_report, resume_jobs);
   if (*sweep_cmd) {
     sweep.report = !sweep_no_report;
     return sweep_command(sweep);
@@ -153,21 +182,7 @@ int main(int argc, char** argv) {
     atlas.report = !atlas_no_report;
     return atlas_command(atlas);
   }
-  if (*list_cmd) {
-    std::vector<SceneListing> scenes;
-    try {
-      scenes = list_scenes();
-    } catch (const ConfigError& e) {
-      report_input_error(e);
-      return 2;
-    }
-    for (const auto& s : scenes) {
-      std::cout << s.name << "  " << s.description;
-      if (!s.reference.empty()) std::cout << "  [" << s.reference << "]";
-      std::cout << "\n";
-    }
-    return 0;
-  }
+  if (*list_cmd) return list_command();
   if (*report_cmd) return report_command(report_dir);
   if (*movie_cmd) {
     std::vector<std::string> args{movie_dir};

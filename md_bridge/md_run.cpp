@@ -51,6 +51,75 @@ const std::vector<MdSeriesColumn>& md_series_columns() {
   return columns;
 }
 
+namespace {
+
+// One sample of the box at time t: its energies, pressure and long-wave modes, and the engine's
+// own values, appended to the time series (one row of md_series_columns()).
+void append_sample(MdSeries& s, double t, const BoxEnergies& e, const BoxPressure& pressure,
+                   const BoxModes& box, const EngineValues& own) {
+  s.t.push_back(t);
+  s.T.push_back(e.thermal / e.particles);
+  s.energy_thermal.push_back(e.thermal);
+  s.energy_kinetic_x.push_back(e.kinetic_macro_x);
+  s.energy_kinetic_y.push_back(e.kinetic_macro_y);
+  s.kinetic_noise_x.push_back(e.macro_noise_x);
+  s.kinetic_noise_y.push_back(e.macro_noise_y);
+  s.energy_total.push_back(e.kinetic_total);
+  s.momentum_x.push_back(e.momentum_x);
+  s.momentum_y.push_back(e.momentum_y);
+  s.pressure_xx.push_back(pressure.xx);
+  s.pressure_yy.push_back(pressure.yy);
+  s.pressure_stderr.push_back(pressure.mean_stderr);
+  s.compressibility.push_back(pressure.compressibility());
+  s.mode_energy_fraction.push_back(box.energy_fraction);
+  s.structure_factor.push_back(box.structure_factor);
+  if (s.engine.empty()) {
+    for (const auto& [name, value] : own) s.engine.push_back({name, {}});
+  }
+  for (std::size_t i = 0; i < own.size(); ++i) s.engine[i].second.push_back(own[i].second);
+}
+
+// The moments of the particles on every rank, reduced over the engine's ranks: the bins' sums,
+// the box's energies and pressure, and its long-wave modes.
+struct BoxSample {
+  Moments moments;
+  BoxEnergies energies;
+  BoxPressure pressure;
+  BoxModes modes;
+};
+
+BoxSample sample_box(const CoarseGrainer& grainer, ParticleEngine& engine, double lx, double ly) {
+  const LocalVirial w = engine.local_virial();
+  const LocalParticles p = engine.local_particles();
+  const bool virial = w.xx.size() == std::size_t(p.count) && w.yy.size() == w.xx.size() &&
+                      !(p.count > 0 && w.xx.empty());
+  Moments m(grainer.grid().bins);
+  grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
+                     virial ? w.yy.data() : nullptr);
+  if (virial) m.virial_particles = m.particles;  // also a rank without particles
+  allreduce(m, engine.comm());
+  BoxModeSums modes = box_mode_sums(p.x, p.v, p.mass, p.count, lx, ly);
+  allreduce(modes, engine.comm());
+  const BoxEnergies e = grainer.energies(m);
+  const BoxPressure pressure = grainer.pressure(m);
+  return {std::move(m), e, pressure, box_modes(modes)};
+}
+
+// The run's t = 0 particles drawn from the scene's fields: each rank draws the strips of its own
+// part of the box; the strips' momenta are shared.
+void place_sampled_particles(const MdRunSpec& spec, ParticleEngine& engine) {
+  const MPI_Comm comm = engine.comm();
+  engine.set_up_sampled([&](double x_lo, double x_hi) {
+    return sample_particles_in(spec.scene, spec.fields, spec.seed, x_lo, x_hi,
+                               [comm](std::vector<double>& momenta) {
+                                 MPI_Allreduce(MPI_IN_PLACE, momenta.data(), int(momenta.size()),
+                                               MPI_DOUBLE, MPI_MAX, comm);
+                               });
+  });
+}
+
+}  // namespace
+
 MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
                    const std::function<void(const MdProgress&)>& progress,
                    const MdCheckpoints& checkpoints) {
@@ -84,15 +153,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     next_frame = resume->next_frame;
   } else {
     result.fields = fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins);
-    // Each rank draws the strips of its own part of the box; the strips' momenta are shared.
-    const MPI_Comm comm = engine.comm();
-    engine.set_up_sampled([&](double x_lo, double x_hi) {
-      return sample_particles_in(scene, spec.fields, spec.seed, x_lo, x_hi,
-                                 [comm](std::vector<double>& momenta) {
-                                   MPI_Allreduce(MPI_IN_PLACE, momenta.data(), int(momenta.size()),
-                                                 MPI_DOUBLE, MPI_MAX, comm);
-                                 });
-    });
+    place_sampled_particles(spec, engine);
   }
   int rank = 0;
   MPI_Comm_rank(engine.comm(), &rank);
@@ -124,44 +185,11 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   };
 
   auto observe = [&](bool snapshot) {
-    const LocalVirial w = engine.local_virial();
-    const LocalParticles p = engine.local_particles();
-    const bool virial = w.xx.size() == std::size_t(p.count) && w.yy.size() == w.xx.size() &&
-                        !(p.count > 0 && w.xx.empty());
-    Moments m(grainer.grid().bins);
-    grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
-                       virial ? w.yy.data() : nullptr);
-    if (virial) m.virial_particles = m.particles;  // also a rank without particles
-    allreduce(m, engine.comm());
-    BoxModeSums modes = box_mode_sums(p.x, p.v, p.mass, p.count, lx, ly);
-    allreduce(modes, engine.comm());
-    const BoxEnergies e = grainer.energies(m);
-    const BoxPressure pressure = grainer.pressure(m);
-    const BoxModes box = box_modes(modes);
-    auto& s = result.series;
-    s.t.push_back(t);
-    s.T.push_back(e.thermal / e.particles);
-    s.energy_thermal.push_back(e.thermal);
-    s.energy_kinetic_x.push_back(e.kinetic_macro_x);
-    s.energy_kinetic_y.push_back(e.kinetic_macro_y);
-    s.kinetic_noise_x.push_back(e.macro_noise_x);
-    s.kinetic_noise_y.push_back(e.macro_noise_y);
-    s.energy_total.push_back(e.kinetic_total);
-    s.momentum_x.push_back(e.momentum_x);
-    s.momentum_y.push_back(e.momentum_y);
-    s.pressure_xx.push_back(pressure.xx);
-    s.pressure_yy.push_back(pressure.yy);
-    s.pressure_stderr.push_back(pressure.mean_stderr);
-    s.compressibility.push_back(pressure.compressibility());
-    s.mode_energy_fraction.push_back(box.energy_fraction);
-    s.structure_factor.push_back(box.structure_factor);
-    const EngineValues own = engine.series_values();
-    if (s.engine.empty()) {
-      for (const auto& [name, value] : own) s.engine.push_back({name, {}});
-    }
-    for (std::size_t i = 0; i < own.size(); ++i) s.engine[i].second.push_back(own[i].second);
+    const BoxSample b = sample_box(grainer, engine, lx, ly);
+    const BoxEnergies& e = b.energies;
+    append_sample(result.series, t, e, b.pressure, b.modes, engine.series_values());
     if (snapshot) {
-      fields::FieldSnapshot f = grainer.fields(m);
+      fields::FieldSnapshot f = grainer.fields(b.moments);
       f.t = t;
       f.label = "output";
       result.fields.snapshots.push_back(std::move(f));
