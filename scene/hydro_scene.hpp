@@ -11,6 +11,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/convergence_study.hpp"
 #include "hydro/driver.hpp"
+#include "hydro/field_integrals.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/singularity_analysis.hpp"
@@ -66,6 +67,10 @@ std::string closure_problem_key(const std::string& closure,
                                 const hydro::ClosureParameterProblem& problem);
 std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene);
 
+// The refusal of an initial field that is not finite where it was evaluated (the hydro's cells,
+// the particle sampler), naming the initial.* key it comes from and its value, one line.
+ConfigError initial_field_refusal(const CaseConfig& config, const hydro::InitialFieldError& e);
+
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
 // engine cannot run (meshes that do not nest, fields that are negative somewhere...).
 HydroScene hydro_scene_from(const CaseConfig& config);
@@ -100,6 +105,9 @@ struct HydroOutcome {
   std::optional<hydro::MeasuredRate> linear_rate;
   std::optional<hydro::ConvergenceStudy> convergence;
   int unstable_modes = 0, shear_unstable_modes = 0;
+  // The totals of the initial cells and the integrals of the fields they were built from
+  // (hydro/field_integrals.hpp): equal to round-off, the run's conservation from its first step.
+  hydro::FieldTotals initial_cells, initial_given;
 };
 
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress);

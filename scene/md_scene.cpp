@@ -157,71 +157,80 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
   if (!problem.empty()) {
     refuse(c, scene_problem_key(c, spec.scene), "impossible particle scene: " + problem);
   }
-  spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
-  spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
-  spec.t_end = c.real("md.t_end");
-  spec.sample_interval = c.real("md.sample_interval");
-  spec.output_times = c.reals("md.output_times");
-  spec.bins = c.int_value("md.bins");
-  spec.kernel = c.string("md.kernel");
-  spec.kernel_width = c.real("md.kernel_width");
-  s.ensemble = c.int_value("md.ensemble");
-  s.engine = c.string("md.engine");
-  s.checkpoint_interval = c.real("md.checkpoint_interval");
-  s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
-  // The [md] keys every scene has and the engine's own (not another engine's).
-  for (const KeySpec& key : case_schema()) {
-    const auto owner = key_owner(key.key);
-    if (key.section() != "md" || (owner && owner->model != s.engine)) continue;
-    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
-    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
-    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
-  }
-  spec.snapshot_interval = c.real("md.snapshot_interval");
-  const double t_haff = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
-  if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
-    const double t0 = t_haff;
-    if (!(std::isfinite(t0) && t0 > 0.0)) {
-      refuse(c, c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q",
-             "the gas does not cool (r = " + format_real(spec.scene.restitution) +
-                 "), so its Haff time is infinite and md.time_unit = \"haff\" " + "(from " +
-                 c.origin("md.time_unit") + ") gives no end time; use r < 1 or " +
-                 "md.time_unit = \"md\"");
+  try {
+    spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
+    spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
+    spec.t_end = c.real("md.t_end");
+    spec.sample_interval = c.real("md.sample_interval");
+    spec.output_times = c.reals("md.output_times");
+    spec.bins = c.int_value("md.bins");
+    spec.kernel = c.string("md.kernel");
+    spec.kernel_width = c.real("md.kernel_width");
+    s.ensemble = c.int_value("md.ensemble");
+    s.engine = c.string("md.engine");
+    s.checkpoint_interval = c.real("md.checkpoint_interval");
+    s.haff_mode_energy_fraction = c.real("md.haff_mode_energy_fraction");
+    // The [md] keys every scene has and the engine's own (not another engine's).
+    for (const KeySpec& key : case_schema()) {
+      const auto owner = key_owner(key.key);
+      if (key.section() != "md" || (owner && owner->model != s.engine)) continue;
+      if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
+      if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
+      if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
     }
-    spec.t_end *= t0;
-    spec.sample_interval *= t0;
-    for (double& t : spec.output_times) t *= t0;
-  }
-  if (spec.sample_interval > spec.t_end) {
-    throw ConfigError(c.origin("md.sample_interval") +
-                      ": md.sample_interval = " + format_real(spec.sample_interval) +
-                      ": must be <= md.t_end = " + format_real(spec.t_end));
-  }
-  // What the coarse-grainer and the sampler would refuse, refused here with the key named.
-  try {
-    md::CoarseGrainer check({-0.5 * spec.scene.box_length, spec.scene.box_length, 0.0,
-                             spec.scene.box_width, spec.bins, spec.kernel, spec.kernel_width});
-    (void)check;
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(c.origin("md.kernel_width") +
-                      ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
-  }
-  // The densest point of the initial profile must still take disks without overlap.
-  const double n_max = std::max(0.0, compare::profile_maximum(spec.fields.n));
-  if (n_max * spec.scene.area_fraction > 0.5) {
-    throw ConfigError(c.origin("md.area_fraction") +
-                      ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
-                      ": the initial density peak n/n0 = " + format_real(n_max) +
-                      " would need a local area fraction above 0.5");
-  }
-  check_particle_work(c, s, t_haff);
-  if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units
-    check_hydro_work(c, hydro, spec.t_end / spec.scene.box_length, "md.t_end");
-  }
-  try {
-    (void)make_engine(s, "");
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+    spec.snapshot_interval = c.real("md.snapshot_interval");
+    const double t_haff = md::haff_time_md(spec.scene, md::enskog_chi(spec.scene.area_fraction));
+    if (c.string("md.time_unit") == "haff") {  // times given in kinetic-theory Haff times
+      const double t0 = t_haff;
+      if (!(std::isfinite(t0) && t0 > 0.0)) {
+        refuse(c, c.real("md.restitution") > 0.0 ? "md.restitution" : "physics.q",
+               "the gas does not cool (r = " + format_real(spec.scene.restitution) +
+                   "), so its Haff time is infinite and md.time_unit = \"haff\" " + "(from " +
+                   c.origin("md.time_unit") + ") gives no end time; use r < 1 or " +
+                   "md.time_unit = \"md\"");
+      }
+      spec.t_end *= t0;
+      spec.sample_interval *= t0;
+      for (double& t : spec.output_times) t *= t0;
+    }
+    if (spec.sample_interval > spec.t_end) {
+      throw ConfigError(c.origin("md.sample_interval") +
+                        ": md.sample_interval = " + format_real(spec.sample_interval) +
+                        ": must be <= md.t_end = " + format_real(spec.t_end));
+    }
+    // What the coarse-grainer and the sampler would refuse, refused here with the key named.
+    try {
+      md::CoarseGrainer check({-0.5 * spec.scene.box_length, spec.scene.box_length, 0.0,
+                               spec.scene.box_width, spec.bins, spec.kernel, spec.kernel_width});
+      (void)check;
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(c.origin("md.kernel_width") +
+                        ": md.kernel_width = " + format_real(spec.kernel_width) + ": " + e.what());
+    }
+    // The densest point of the initial profile must still take disks without overlap.
+    const double n_max = std::max(0.0, compare::profile_maximum(spec.fields.n));
+    if (n_max * spec.scene.area_fraction > 0.5) {
+      throw ConfigError(c.origin("md.area_fraction") +
+                        ": md.area_fraction = " + format_real(spec.scene.area_fraction) +
+                        ": the initial density peak n/n0 = " + format_real(n_max) +
+                        " would need a local area fraction above 0.5");
+    }
+    check_particle_work(c, s, t_haff);
+    if (c.boolean("compare.enabled")) {  // the hydro then runs to md.t_end in scaled units
+      check_hydro_work(c, hydro, spec.t_end / spec.scene.box_length, "md.t_end");
+    }
+    try {
+      (void)make_engine(s, "");
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+    }
+    // The fields where the sampler tabulates them.
+    md::check_sampled_profile(spec.scene, spec.fields);
+  } catch (const hydro::InitialFieldError& e) {
+    throw initial_field_refusal(c, e);
+  } catch (const std::invalid_argument& e) {  // the sampler's profile cannot be packed
+    throw ConfigError(c.origin("md.area_fraction") + ": md.area_fraction = " +
+                      format_real(spec.scene.area_fraction) + ": " + e.what());
   }
   return s;
 }
