@@ -159,7 +159,7 @@ def snapshot_bytes(rng, base):
             g = f["hydro/fields"]
             for _ in range(rng.choice([0, 1, 1, 2])):
                 name = rng.choice(["x", "n", "v_x", "v_y", "T", "t", "label", "n_stderr"])
-                if name not in g:
+                if name not in g or g[name].size > 10**6:  # absent, or declared huge before
                     continue
                 old = g[name][()]
                 del g[name]
