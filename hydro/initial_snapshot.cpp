@@ -49,6 +49,37 @@ std::optional<std::string> snapshot_shape_problem(const fields::FieldSnapshot& s
   return std::nullopt;
 }
 
+// The times and the columns x, n, v_x, v_y, T of a FieldSeries group (fields/field_series_file),
+// numbers only: its labels and geometry, variable-length strings that the HDF5 library reads
+// without bounds checks in a damaged file, are not needed here.
+fields::FieldSeries snapshot_fields(const H5::Group& g) {
+  fields::FieldSeries series;
+  for (const double t : h5::read_doubles(g, "t").values) {
+    series.snapshots.emplace_back();
+    series.snapshots.back().t = t;
+  }
+  const std::pair<const char*, std::vector<double> fields::FieldSnapshot::*> columns[] = {
+      {"x", &fields::FieldSnapshot::x},
+      {"n", &fields::FieldSnapshot::n},
+      {"v_x", &fields::FieldSnapshot::v_x},
+      {"v_y", &fields::FieldSnapshot::v_y},
+      {"T", &fields::FieldSnapshot::T}};
+  for (const auto& [name, column] : columns) {
+    if (!g.nameExists(name)) continue;
+    const h5::DoubleArray a = h5::read_doubles(g, name);
+    if (a.shape.size() != 2 || a.shape[0] != series.snapshots.size()) {
+      throw std::runtime_error("dataset " + std::string(name) + " is not [" +
+                               std::to_string(series.snapshots.size()) + " x N]");
+    }
+    const std::size_t width = a.shape[1];
+    for (std::size_t k = 0; k < series.snapshots.size(); ++k) {
+      const auto row = a.values.begin() + static_cast<std::ptrdiff_t>(k * width);
+      (series.snapshots[k].*column).assign(row, row + static_cast<std::ptrdiff_t>(width));
+    }
+  }
+  return series;
+}
+
 ProfileTable read_snapshot(const ParameterSet& p) {
   const std::string path = p.text("from"), source = p.text("source");
   const double time = p.real("time");
@@ -63,7 +94,7 @@ ProfileTable read_snapshot(const ParameterSet& p) {
                                           (source == "md" ? "md.enabled" : "hydro.enabled") +
                                           " (allowed: a source the file has)");
     }
-    series = fields::read_field_series(file.openGroup(group_name));
+    series = snapshot_fields(file.openGroup(group_name));
     if (source == "md") {
       const H5::Group md = file.openGroup("/md");
       length = h5::read_double_attribute(md, "box_length");
