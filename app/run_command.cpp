@@ -563,6 +563,8 @@ int run_command(const RunOptions& options) {
       options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
   std::optional<OutputFolder> folder;
   std::string folder_error;
+  std::error_code exists_error;
+  const bool dir_existed = fs::exists(dir, exists_error);
   if (writer) {
     try {
       folder.emplace(dir);
@@ -636,6 +638,20 @@ int run_command(const RunOptions& options) {
     summary["error"] = e.what();
     if (summary["md"].is_object()) summary["md"]["error"] = e.what();
     interrupted = true;
+  } catch (const hydro::InitialFieldError& e) {
+    // A field that is not finite at a point only the run evaluates (a disk's random position):
+    // bad input, refused as the checks before the run refuse it. Nothing of this run is kept,
+    // its checkpoints neither: a resume would meet the same value.
+    const ConfigError refusal = initial_field_refusal(config, e);
+    if (!writer) return 2;
+    folder->commit_at_exit(false);
+    folder->abandon();
+    if (summary.contains("checkpoint")) remove_checkpoints(dir);
+    folder.reset();  // releases the lock
+    std::error_code ignored;
+    if (!dir_existed) fs::remove_all(dir, ignored);  // as a refusal before the run leaves it
+    report_input_error(refusal);
+    return 2;
   } catch (const H5::Exception& e) {
     mark_hdf5_broken();
     const std::string message = e.getFuncName() + ": " + e.getDetailMsg();

@@ -165,6 +165,16 @@ json hydro_summary(const HydroScene& scene, const HydroOutcome& out) {
   h["energy_drift"] = run.energy_drift;
   h["momentum_drift"] = run.momentum_drift;
   h["mass_drift"] = run.mass_drift;
+  const auto totals = [](const hydro::FieldTotals& t) {
+    return nlohmann::json{{"mass", t.mass},
+                          {"momentum_x", t.momentum_x},
+                          {"momentum_y", t.momentum_y},
+                          {"energy", t.energy}};
+  };
+  h["initial_totals"] = totals(out.initial_cells);
+  h["initial_totals"]["given"] = totals(out.initial_given);
+  h["initial_totals"]["relative_difference"] =
+      hydro::largest_relative_difference(out.initial_cells, out.initial_given);
   h["validity"] = validity_json(run.validity);
   h["haff_max_relative_error"] = out.haff_max_relative_error;
   if (out.linear_rate) {

@@ -25,14 +25,20 @@ json ladder_rows(const std::vector<LadderRung>& ladder) {
 
 // The reference as atlas.json gives it. Converged only where its own error was measured and is
 // within the tolerance: an error nobody measured (no neighbour ran) does not count as small.
+// Unmeasured, converged_to_tolerance is null and converged_reason says why.
 json reference_json(const AtlasReference& ref, double tolerance) {
   bool converged = !ref.convergence.empty();
   for (const auto& [k, v] : ref.convergence) converged &= v <= tolerance;
   const bool ensemble = ref.family->kind() == FamilyKind::ensemble;
+  const bool measured = !ref.convergence.empty();
   return {{"setting", setting_json(ref.run->setting)},
           {"convergence", errors_json(ref.convergence)},
           {"statistical_error", errors_json(ref.statistical)},
-          {"converged_to_tolerance", converged},
+          {"converged_to_tolerance", measured ? json(converged) : json(nullptr)},
+          {"converged_reason",
+           measured ? json(nullptr)
+                    : json("not measured: no neighbour of the reference one step coarser ran "
+                           "within the budget, so its own error is unknown")},
           {"how", ensemble ? "the reference's ensemble standard error (relative; the "
                              "event-driven hard disks have no discretisation knob)"
                            : "largest difference to its neighbours one step coarser in "

@@ -1,5 +1,13 @@
 #include "fields/hdf5_datasets.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 namespace granvv::h5 {
@@ -41,8 +49,71 @@ void write_attribute(H5::H5Object& o, const std::string& name, double value) {
       .write(H5::PredType::NATIVE_DOUBLE, &value);
 }
 
+namespace {
+
+// The number of values of a dataset of this shape, refused beyond what its file can hold.
+std::uint64_t checked_extent(const H5::DataSet& ds, const std::string& name,
+                             const std::vector<hsize_t>& shape) {
+  std::uint64_t size = 1;
+  bool overflow = false;
+  for (const hsize_t d : shape) {
+    if (d != 0 && size > kMaxDatasetValues / d) overflow = true;
+    size = overflow ? kMaxDatasetValues + 1 : size * d;
+  }
+  std::error_code ec;
+  const std::uint64_t file_bytes = std::filesystem::file_size(ds.getFileName(), ec);
+  const std::uint64_t allowed = std::min<std::uint64_t>(
+      kMaxDatasetValues,
+      ec ? kMaxDatasetValues : std::max<std::uint64_t>(file_bytes, 1024) * kMaxValuesPerFileByte);
+  if (size > allowed) {
+    std::string extent;
+    for (const hsize_t d : shape) extent += (extent.empty() ? "" : " x ") + std::to_string(d);
+    throw std::runtime_error("dataset " + name + " declares " + extent + " values, more than " +
+                             (ec ? std::string("the limit of ") + std::to_string(allowed)
+                                 : "a file of " + std::to_string(file_bytes) + " bytes holds") +
+                             " (allowed: at most " + std::to_string(allowed) + " values)");
+  }
+  return size;
+}
+
+}  // namespace
+
+std::string hdf5_open_problem(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return path + " is not a file";
+  // The signature is at offset 0, or after a user block at 512, 1024, 2048, ... bytes.
+  std::ifstream in(path, std::ios::binary);
+  bool signed_file = false;
+  for (std::streamoff at = 0; !signed_file && at <= (std::streamoff(1) << 24);
+       at = at == 0 ? 512 : 2 * at) {
+    char signature[8] = {};
+    in.clear();
+    in.seekg(at);
+    if (!in.read(signature, sizeof signature)) break;
+    signed_file = std::memcmp(signature, "\x89HDF\r\n\x1a\n", sizeof signature) == 0;
+  }
+  if (!signed_file) return path + " is not an HDF5 file (it lacks the HDF5 signature)";
+  // HDF5 takes flock(LOCK_EX) on a file it opens for writing (HDF5 file locking).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return "cannot open " + path + ": " + std::strerror(errno);
+  const bool locked = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);
+  if (locked) {
+    return path +
+           " is open for writing in another process (its HDF5 file lock is held): wait "
+           "until that process has finished writing it";
+  }
+  return "";
+}
+
 DoubleArray read_doubles(const H5::Group& g, const std::string& name) {
   const H5::DataSet ds = g.openDataSet(name);
+  const H5T_class_t type = ds.getTypeClass();
+  if (type != H5T_FLOAT && type != H5T_INTEGER) {
+    throw std::runtime_error("dataset " + name +
+                             " does not hold numbers (allowed: an integer or "
+                             "floating-point dataset)");
+  }
   const H5::DataSpace space = ds.getSpace();
   const int rank = space.getSimpleExtentNdims();
   if (rank < 1 || rank > 2) {
@@ -52,8 +123,7 @@ DoubleArray read_doubles(const H5::Group& g, const std::string& name) {
   DoubleArray a;
   a.shape.resize(rank);
   space.getSimpleExtentDims(a.shape.data());
-  hsize_t size = 1;
-  for (hsize_t d : a.shape) size *= d;
+  const std::uint64_t size = checked_extent(ds, name, a.shape);
   a.values.resize(size);
   if (size > 0) ds.read(a.values.data(), H5::PredType::NATIVE_DOUBLE);
   return a;
@@ -61,8 +131,13 @@ DoubleArray read_doubles(const H5::Group& g, const std::string& name) {
 
 std::vector<std::string> read_strings(const H5::Group& g, const std::string& name) {
   const H5::DataSet ds = g.openDataSet(name);
+  const H5::DataSpace space = ds.getSpace();
+  if (ds.getTypeClass() != H5T_STRING || space.getSimpleExtentNdims() != 1) {
+    throw std::runtime_error("dataset " + name + " is not a 1D dataset of strings");
+  }
   hsize_t size = 0;
-  ds.getSpace().getSimpleExtentDims(&size);
+  space.getSimpleExtentDims(&size);
+  checked_extent(ds, name, {size});
   H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
   std::vector<char*> ptrs(size, nullptr);
   if (size > 0) ds.read(ptrs.data(), type);

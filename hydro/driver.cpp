@@ -33,6 +33,25 @@ double crossing_time(double t0, double n0, double t1, double n1, double level) {
   return u0 == u1 ? t1 : t0 + (t1 - t0) * (u0 - u) / (u0 - u1);
 }
 
+// The first node or cell whose value is not finite, as the reason a run cannot start (a field
+// given as NaN there); empty if every value is finite.
+std::string non_finite_initial_state(const LagrangianState& s) {
+  const auto describe = [](const char* what, double value, double x) {
+    return std::string("the initial ") + what + " is " + std::to_string(value) +
+           " at x = " + std::to_string(x) + " (a non-finite initial field)";
+  };
+  for (int j = 0; j < s.cells(); ++j) {
+    if (!std::isfinite(s.node_v[j])) return describe("velocity v_x", s.node_v[j], s.node_x[j]);
+    if (s.has_transverse() && !std::isfinite(s.node_vy[j])) {
+      return describe("transverse velocity v_y", s.node_vy[j], s.node_x[j]);
+    }
+    const double centre = s.node_x[j] + 0.5 * cell_width(s, j);
+    if (!std::isfinite(s.cell_mass[j])) return describe("cell mass", s.cell_mass[j], centre);
+    if (!std::isfinite(s.cell_T[j])) return describe("temperature", s.cell_T[j], centre);
+  }
+  return "";
+}
+
 }  // namespace
 
 RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl& control,
@@ -94,7 +113,12 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
     return true;
   };
 
-  while (!outside_closure()) {
+  const std::string not_finite = non_finite_initial_state(s);
+  if (!not_finite.empty()) {
+    result.status = RunStatus::failed;
+    result.stop_reason = not_finite;
+  }
+  while (not_finite.empty() && !outside_closure()) {
     if (s.t >= control.t_end) {
       result.status = RunStatus::completed;
       result.stop_reason = "end time reached";

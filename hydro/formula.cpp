@@ -8,6 +8,22 @@
 #include "fields/constants.hpp"
 
 namespace granvv::hydro {
+namespace {
+
+// A formula or muparser's message about it as one short line quotes them: at most this many
+// characters, then how long the whole is.
+constexpr std::size_t kQuotedCharacters = 60;
+
+std::string excerpt(const std::string& text, std::size_t characters = kQuotedCharacters) {
+  std::string out = text.substr(0, characters);
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  }
+  if (text.size() > characters) out += "... (" + std::to_string(text.size()) + " characters)";
+  return out;
+}
+
+}  // namespace
 
 struct Formula::Compiled {
   std::string text;
@@ -26,6 +42,11 @@ Formula::Formula(const std::string& text, const NamedReals& constants,
     : compiled_(std::make_shared<Compiled>()) {
   Compiled& c = *compiled_;
   c.text = text;
+  if (text.size() > std::size_t(mu::MaxLenExpression)) {
+    throw FormulaError("the formula is " + std::to_string(text.size()) +
+                       " characters long (allowed: at most " +
+                       std::to_string(mu::MaxLenExpression) + ", muparser's limit)");
+  }
   c.values.assign(variables.size(), 0.0);
   std::string reserved;
   for (const auto& variable : variables) reserved += variable + ", ";
@@ -51,11 +72,11 @@ Formula::Formula(const std::string& text, const NamedReals& constants,
     c.parser.SetExpr(text);
     (void)c.parser.Eval();  // muparser parses on the first evaluation
   } catch (const mu::Parser::exception_type& error) {
-    std::string message = error.GetMsg();
+    std::string message = excerpt(error.GetMsg(), 2 * kQuotedCharacters);
     if (message.find("position") == std::string::npos && error.GetPos() >= 0) {
       message += " (position " + std::to_string(error.GetPos()) + ")";
     }
-    throw FormulaError("syntax error in \"" + text + "\": " + message);
+    throw FormulaError("syntax error in \"" + excerpt(text) + "\": " + message);
   }
 }
 

@@ -27,6 +27,14 @@ struct InitialConditionType {
   // Optional: the files its fields are read from (their paths and checksums go into
   // summary.json for provenance).
   std::function<std::vector<std::string>(const ParameterSet&)> files;
+  // The parameters whose values make n, v_x, v_y and T, named when a field is not finite
+  // where it is evaluated (empty: "type", a field the type computes from its numbers).
+  struct FieldParameters {
+    std::string n, v, vy, T;
+  } field_parameters;
+  // Optional: whether the parameters give a transverse velocity v_y (a formula other than "0",
+  // a table's v_y column that is not all zero); without it, the type gives none.
+  std::function<bool(const ParameterSet&)> has_transverse_velocity;
 };
 
 // In table order: uniform, single_mode, random_modes, linear_mode, expression, table, snapshot.

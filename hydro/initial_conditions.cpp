@@ -1,10 +1,12 @@
 #include "hydro/initial_conditions.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "fields/constants.hpp"
 #include "hydro/dilute_closure.hpp"
+#include "hydro/field_integrals.hpp"
 #include "hydro/initial_condition_registry.hpp"
 
 namespace granvv::hydro {
@@ -42,31 +44,75 @@ InitialFields make_initial_fields(const InitialParameters& p, const Physics& phy
   return make_initial_fields(p, DiluteClosure(physics));
 }
 
+namespace {
+
+// f, throwing InitialFieldError where its value is not finite.
+std::function<double(double)> finite_only(std::function<double(double)> f, std::string field,
+                                          std::string parameter) {
+  return [f = std::move(f), field = std::move(field), parameter = std::move(parameter)](double x) {
+    const double value = f(x);
+    if (!std::isfinite(value)) {
+      std::ostringstream why;
+      why.precision(10);
+      why << "the initial " << field << " is " << value << " at x = " << x
+          << " (allowed: a finite value at every x, also between the points it was checked at)";
+      throw InitialFieldError(parameter, why.str());
+    }
+    return value;
+  };
+}
+
+std::string or_type(const std::string& parameter) {
+  return parameter.empty() ? "type" : parameter;
+}
+
+}  // namespace
+
 InitialFields make_initial_fields(const InitialParameters& p, const Closure& closure) {
-  InitialFields f = find_initial_condition(p.type).generate(p.values, closure);
+  const InitialConditionType& type = find_initial_condition(p.type);
+  InitialFields f = type.generate(p.values, closure);
+  const auto& keys = type.field_parameters;
+  std::string vy_parameter = or_type(keys.vy);
   const double b = p.values.real("transverse_amplitude");
   if (b != 0.0) {
     const double ky = 2.0 * kPi * p.values.integer("transverse_mode");
     f.vy = [b, ky](double x) { return b * std::cos(ky * x); };
+    vy_parameter = "transverse_amplitude";
   }
+  f.n = finite_only(std::move(f.n), "density", or_type(keys.n));
+  f.v = finite_only(std::move(f.v), "velocity", or_type(keys.v));
+  f.T = finite_only(std::move(f.T), "temperature", or_type(keys.T));
+  if (f.vy) f.vy = finite_only(std::move(f.vy), "transverse velocity", vy_parameter);
   return f;
 }
 
 std::optional<ParameterProblem> initial_parameter_problem(const InitialParameters& p,
                                                           bool transverse_velocity) {
-  if (p.values.real("transverse_amplitude") != 0.0 && !transverse_velocity) {
+  const bool amplitude = p.values.real("transverse_amplitude") != 0.0;
+  if (amplitude && !transverse_velocity) {
     return ParameterProblem{"transverse_amplitude",
                             "a transverse velocity needs hydro.transverse_velocity = true"};
   }
   const auto& type = find_initial_condition(p.type);
-  for (const auto& spec : type.parameters) {  // a formula for v_y (initial.type = "expression")
-    if (spec.name == "transverse_velocity" && !transverse_velocity &&
-        p.values.text(spec.name) != "0") {
-      return ParameterProblem{spec.name,
-                              "a transverse velocity needs hydro.transverse_velocity = true"};
+  if (auto problem = type.problem ? type.problem(p.values) : std::nullopt) return problem;
+  // The type's own v_y: a formula (initial.transverse_velocity) or a table's v_y column.
+  if (type.has_transverse_velocity && type.has_transverse_velocity(p.values)) {
+    const std::string own = or_type(type.field_parameters.vy);
+    const std::string what = own == "from" ? "the v_y column of initial.from" : "initial." + own;
+    if (amplitude) {
+      return ParameterProblem{"transverse_amplitude",
+                              "initial.transverse_amplitude and " + what +
+                                  " both set the transverse velocity (allowed: one of them; set "
+                                  "initial.transverse_amplitude = 0 to keep " +
+                                  what + ")"};
+    }
+    if (!transverse_velocity) {
+      return ParameterProblem{own, what +
+                                       " gives a transverse velocity v_y, which needs "
+                                       "hydro.transverse_velocity = true"};
     }
   }
-  return type.problem ? type.problem(p.values) : std::nullopt;
+  return std::nullopt;
 }
 
 std::optional<InertiaReference> inertia_reference(const InitialParameters& p) {
@@ -85,28 +131,39 @@ std::vector<std::string> initial_files(const InitialParameters& p) {
 }
 
 LagrangianState discretize(const InitialFields& f, int cells, double node_offset, bool transverse) {
-  static const double gauss_x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static const double gauss_w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const std::vector<double> breaks = sorted_breaks(f);
   LagrangianState s;
   const double h = 1.0 / cells;
   for (int j = 0; j < cells; ++j) {
     const double x = -0.5 + (j + node_offset) * h;
     s.node_x.push_back(x);
     s.node_xi.push_back(x);
-    s.node_v.push_back(f.v(x));
-    if (transverse) s.node_vy.push_back(f.vy(x));
+  }
+  // The cells' halves: [x_i, centre_i] and [centre_i, x_i+1].
+  std::vector<FieldTotals> left(cells), right(cells);
+  for (int i = 0; i < cells; ++i) {
+    const double a = s.node_x[i], centre = a + 0.5 * h, b = a + h;
+    left[i] = totals_between(f, a, centre, breaks, transverse);
+    right[i] = totals_between(f, centre, b, breaks, transverse);
+    s.cell_mass.push_back(left[i].mass + right[i].mass);
+  }
+  std::vector<double> kinetic(cells);  // of node j
+  for (int j = 0; j < cells; ++j) {
+    const int before = j == 0 ? cells - 1 : j - 1;
+    const double mu = node_mass(s, j);
+    const double v = (right[before].momentum_x + left[j].momentum_x) / mu;
+    s.node_v.push_back(v);
+    kinetic[j] = 0.5 * mu * v * v;
+    if (transverse) {
+      const double vy = (right[before].momentum_y + left[j].momentum_y) / mu;
+      s.node_vy.push_back(vy);
+      kinetic[j] += 0.5 * mu * vy * vy;
+    }
   }
   for (int i = 0; i < cells; ++i) {
-    const double centre = s.node_x[i] + 0.5 * h;
-    double mass = 0.0, energy = 0.0;
-    for (int g = 0; g < 3; ++g) {
-      const double x = centre + 0.5 * h * gauss_x[g];
-      const double n = f.n(x);
-      mass += 0.5 * h * gauss_w[g] * n;
-      energy += 0.5 * h * gauss_w[g] * n * f.T(x);
-    }
-    s.cell_mass.push_back(mass);
-    s.cell_T.push_back(energy / mass);
+    const double energy = left[i].energy + right[i].energy;
+    const double thermal = energy - 0.5 * (kinetic[i] + kinetic[(i + 1) % cells]);
+    s.cell_T.push_back(thermal / s.cell_mass[i]);
   }
   return s;
 }

@@ -5,6 +5,7 @@
 // declares its own parameters, from which the case schema derives the initial.* keys.
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct InitialFields {
   // Initial velocity profile and its slope when the scene has a smooth one (flow by
   // inertia, paper Eq. 5, uses them); empty otherwise.
   std::function<double(double)> dv;
+  // Where the fields' derivatives may jump (a table's rows): the integrals of
+  // hydro/field_integrals.hpp split their panels there.
+  std::vector<double> breaks;
 };
 
 // The homogeneous state n = T = 1, v = v_y = 0 that the generators perturb.
@@ -51,14 +55,24 @@ struct SeededEigenmode {
   int branch;
 };
 
+// A field that is not finite at a point where it was evaluated: NaN or inf between the points a
+// formula or table was checked at (the hydro's nodes, the particle sampler's positions).
+struct InitialFieldError : std::invalid_argument {
+  InitialFieldError(std::string parameter, const std::string& reason)
+      : std::invalid_argument(reason), parameter(std::move(parameter)) {}
+  std::string parameter;  // the initial.<parameter> key the field comes from
+};
+
 // type and values. Throws std::invalid_argument for an
 // unknown type.
 InitialParameters initial_parameters(std::string type, ParameterSet values);
+// Every field of the result throws InitialFieldError where its value is not finite.
 InitialFields make_initial_fields(const InitialParameters& p, const Closure& closure);
 // The same with the paper's dilute closure of K, q.
 InitialFields make_initial_fields(const InitialParameters& p, const Physics& physics);
-// First problem of the parameters: a transverse velocity without transverse_velocity, or a
-// problem the type's generator reports.
+// First problem of the parameters: a transverse velocity without transverse_velocity, two
+// transverse velocities (initial.transverse_amplitude and the type's own), or a problem the
+// type's generator reports.
 std::optional<ParameterProblem> initial_parameter_problem(const InitialParameters& p,
                                                           bool transverse_velocity);
 std::optional<InertiaReference> inertia_reference(const InitialParameters& p);
@@ -67,8 +81,11 @@ std::optional<SeededEigenmode> seeded_eigenmode(const InitialParameters& p);
 std::vector<std::string> initial_files(const InitialParameters& p);
 
 // Nodes at x_j = -1/2 + (j + offset)/N (offset 1/2 puts a cell centre at x = 0, where the
-// single-mode singularity forms); cell masses and temperatures are exact cell averages
-// of n and nT by 3-point Gauss-Legendre quadrature.
+// single-mode singularity forms), built so that the state holds the fields' mass, momentum and
+// energy (hydro/field_integrals.hpp) to round-off: a cell's mass is the integral of n over it;
+// a node's velocity is the momentum of its dual cell (between the neighbouring cell centres)
+// over its node mass; a cell's temperature is its energy less half the kinetic energy of each
+// of its two nodes, over its mass. (v_y counts only with `transverse`.)
 LagrangianState discretize(const InitialFields& fields, int cells, double node_offset,
                            bool transverse);
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hydro/central_difference.hpp"
+#include "hydro/field_integrals.hpp"
 #include "hydro/formula.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/profile_table.hpp"
@@ -104,12 +105,9 @@ InitialConditionType expression_initial_condition() {
           return ParameterProblem{key.name, *why};
         }
         if (std::string(key.name) == "density") {
-          std::vector<double> x, n;
-          for (int i = 0; i < kSamples; ++i) {
-            x.push_back(-0.5 + double(i) / kSamples);
-            n.push_back(f(x.back()));
-          }
-          if (const auto why = mean_density_problem(periodic_mean(x, n))) {
+          InitialFields density = uniform_fields();
+          density.n = f;
+          if (const auto why = mean_density_problem(mean_density(density))) {
             return ParameterProblem{key.name, *why};
           }
         }
@@ -129,6 +127,10 @@ InitialConditionType expression_initial_condition() {
     f.T = T;
     f.vy = vy;
     return f;
+  };
+  type.field_parameters = {"density", "velocity", "transverse_velocity", "temperature"};
+  type.has_transverse_velocity = [](const ParameterSet& p) {
+    return p.text("transverse_velocity") != "0";
   };
   type.inertia_reference = [](const ParameterSet& p) -> std::optional<InertiaReference> {
     const Formula v = formula(p, "velocity"), n = formula(p, "density");

@@ -10,6 +10,7 @@
 
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
+#include "hydro/field_integrals.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/profile_table.hpp"
 
@@ -33,6 +34,52 @@ std::string number(double x) {
   return os.str();
 }
 
+// A snapshot's columns x, n, v_x, T (v_y optional) must have one value per position.
+std::optional<std::string> snapshot_shape_problem(const fields::FieldSnapshot& s) {
+  if (s.x.empty()) return std::string("it has no positions x");
+  const std::pair<const char*, const std::vector<double>*> columns[] = {
+      {"n", &s.n}, {"v_x", &s.v_x}, {"v_y", &s.v_y}, {"T", &s.T}};
+  for (const auto& [name, values] : columns) {
+    if (values->empty() && std::string(name) == "v_y") continue;
+    if (values->size() != s.x.size()) {
+      return "column " + std::string(name) + " has " + std::to_string(values->size()) +
+             " values for " + std::to_string(s.x.size()) + " positions x";
+    }
+  }
+  return std::nullopt;
+}
+
+// The times and the columns x, n, v_x, v_y, T of a FieldSeries group (fields/field_series_file),
+// numbers only: its labels and geometry, variable-length strings that the HDF5 library reads
+// without bounds checks in a damaged file, are not needed here.
+fields::FieldSeries snapshot_fields(const H5::Group& g) {
+  fields::FieldSeries series;
+  for (const double t : h5::read_doubles(g, "t").values) {
+    series.snapshots.emplace_back();
+    series.snapshots.back().t = t;
+  }
+  const std::pair<const char*, std::vector<double> fields::FieldSnapshot::*> columns[] = {
+      {"x", &fields::FieldSnapshot::x},
+      {"n", &fields::FieldSnapshot::n},
+      {"v_x", &fields::FieldSnapshot::v_x},
+      {"v_y", &fields::FieldSnapshot::v_y},
+      {"T", &fields::FieldSnapshot::T}};
+  for (const auto& [name, column] : columns) {
+    if (!g.nameExists(name)) continue;
+    const h5::DoubleArray a = h5::read_doubles(g, name);
+    if (a.shape.size() != 2 || a.shape[0] != series.snapshots.size()) {
+      throw std::runtime_error("dataset " + std::string(name) + " is not [" +
+                               std::to_string(series.snapshots.size()) + " x N]");
+    }
+    const std::size_t width = a.shape[1];
+    for (std::size_t k = 0; k < series.snapshots.size(); ++k) {
+      const auto row = a.values.begin() + static_cast<std::ptrdiff_t>(k * width);
+      (series.snapshots[k].*column).assign(row, row + static_cast<std::ptrdiff_t>(width));
+    }
+  }
+  return series;
+}
+
 ProfileTable read_snapshot(const ParameterSet& p) {
   const std::string path = p.text("from"), source = p.text("source");
   const double time = p.real("time");
@@ -47,7 +94,7 @@ ProfileTable read_snapshot(const ParameterSet& p) {
                                           (source == "md" ? "md.enabled" : "hydro.enabled") +
                                           " (allowed: a source the file has)");
     }
-    series = fields::read_field_series(file.openGroup(group_name));
+    series = snapshot_fields(file.openGroup(group_name));
     if (source == "md") {
       const H5::Group md = file.openGroup("/md");
       length = h5::read_double_attribute(md, "box_length");
@@ -55,7 +102,9 @@ ProfileTable read_snapshot(const ParameterSet& p) {
                 (length * h5::read_double_attribute(md, "box_width"));
     }
   } catch (const H5::Exception&) {
-    throw SnapshotProblem("from", "cannot read " + path + " as a granvv results.h5");
+    const std::string why = h5::hdf5_open_problem(path);
+    throw SnapshotProblem("from",
+                          why.empty() ? "cannot read " + path + " as a granvv results.h5" : why);
   } catch (const std::runtime_error& e) {
     if (const auto* problem = dynamic_cast<const SnapshotProblem*>(&e)) throw *problem;
     throw SnapshotProblem("from", path + ": " + e.what());
@@ -69,6 +118,9 @@ ProfileTable read_snapshot(const ParameterSet& p) {
   if (!found) {
     throw SnapshotProblem("time", "t = " + number(time) + " is not in " + path + group_name +
                                       " (its times: " + (times.empty() ? "none" : times) + ")");
+  }
+  if (const auto why = snapshot_shape_problem(*found)) {
+    throw SnapshotProblem("from", path + group_name + " at t = " + number(found->t) + ": " + *why);
   }
   ProfileTable t;
   for (std::size_t i = 0; i < found->x.size(); ++i) {
@@ -97,8 +149,23 @@ InitialConditionType snapshot_initial_condition() {
   type.problem = [](const ParameterSet& p) -> std::optional<ParameterProblem> {
     if (auto missing = missing_file_problem(p.text("from"))) return missing;
     try {
-      if (const auto why = profile_table_problem(read_snapshot(p))) {
+      const ProfileTable table = read_snapshot(p);
+      if (const auto why = profile_table_problem(table)) {
         return ParameterProblem{"from", "the snapshot's fields: " + *why};
+      }
+      // Interpolated between uneven cells (a steep state's), the density may hold another mass
+      // than the run it came from: refused as a table with that mean is.
+      const double mean =
+          mean_density(profile_fields(table, interpolation_from_name(p.text("interpolation"))));
+      if (std::abs(mean - 1.0) > kMeanDensityTolerance) {
+        return ParameterProblem{
+            "from", "the snapshot's density, interpolated (initial.interpolation = \"" +
+                        p.text("interpolation") + "\") between its " +
+                        std::to_string(table.x.size()) + " positions, holds a mean density of " +
+                        number(mean) + " where the run holds 1 (allowed: within " +
+                        number(kMeanDensityTolerance) +
+                        "): its cells are too uneven to continue from; choose an earlier "
+                        "initial.time"};
       }
     } catch (const SnapshotProblem& e) {
       return ParameterProblem{e.parameter, e.what()};
@@ -109,6 +176,10 @@ InitialConditionType snapshot_initial_condition() {
     return profile_fields(read_snapshot(p), interpolation_from_name(p.text("interpolation")));
   };
   type.files = [](const ParameterSet& p) { return std::vector<std::string>{p.text("from")}; };
+  type.field_parameters = {"from", "from", "from", "from"};
+  type.has_transverse_velocity = [](const ParameterSet& p) {
+    return carries_transverse_velocity(read_snapshot(p));
+  };
   return type;
 }
 

@@ -5,6 +5,7 @@
 // and energy are the interpolant's to quadrature accuracy.
 #include <filesystem>
 
+#include "hydro/field_integrals.hpp"
 #include "hydro/initial_condition_registry.hpp"
 #include "hydro/profile_table.hpp"
 
@@ -47,7 +48,8 @@ InitialConditionType table_initial_condition() {
       if (const auto why = profile_table_problem(table)) {
         return ParameterProblem{"from", "the table " + *why};
       }
-      if (const auto why = mean_density_problem(periodic_mean(table.x, table.n))) {
+      const auto fields = profile_fields(table, interpolation_from_name(p.text("interpolation")));
+      if (const auto why = mean_density_problem(mean_density(fields))) {
         return ParameterProblem{"from", "the table " + *why};
       }
     } catch (const std::runtime_error& e) {
@@ -60,6 +62,10 @@ InitialConditionType table_initial_condition() {
                           interpolation_from_name(p.text("interpolation")));
   };
   type.files = [](const ParameterSet& p) { return std::vector<std::string>{p.text("from")}; };
+  type.field_parameters = {"from", "from", "from", "from"};
+  type.has_transverse_velocity = [](const ParameterSet& p) {
+    return carries_transverse_velocity(read_profile_table(p.text("from"), p.text("dataset")));
+  };
   return type;
 }
 

@@ -16,6 +16,19 @@ namespace granvv::hydro {
 namespace {
 
 constexpr std::size_t kMinRows = 4;  // the monotone cubic needs two secants on each side
+const std::string kUtf8Bom = "\xEF\xBB\xBF";
+constexpr std::size_t kQuotedCharacters = 40;  // of a cell quoted in a message
+
+// A cell as a message quotes it: at most kQuotedCharacters, control bytes as '?'.
+std::string quoted(const std::string& cell) {
+  std::string out = cell.substr(0, kQuotedCharacters);
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  if (cell.size() > kQuotedCharacters)
+    out += "... (" + std::to_string(cell.size()) + " characters)";
+  return "'" + out + "'";
+}
 
 std::string number(double x) {
   std::ostringstream os;
@@ -67,6 +80,15 @@ ProfileTable read_csv(const std::string& path) {
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    if (line_number == 1) {
+      // Spreadsheet programs save "CSV UTF-8" with a byte-order mark: not part of the header.
+      if (line.rfind(kUtf8Bom, 0) == 0) line.erase(0, kUtf8Bom.size());
+      if (line.rfind("\xFF\xFE", 0) == 0 || line.rfind("\xFE\xFF", 0) == 0) {
+        throw std::runtime_error(path +
+                                 " is UTF-16 text (allowed: UTF-8 or ASCII; save it as "
+                                 "\"CSV UTF-8\" or plain CSV)");
+      }
+    }
     const std::string text = trimmed(line.substr(0, line.find('#')));
     if (text.empty()) continue;
     const auto cells = split_commas(text);
@@ -74,8 +96,8 @@ ProfileTable read_csv(const std::string& path) {
       for (const auto& name : cells) {
         auto* c = column(t, name);
         if (!c) {
-          throw std::runtime_error(path + ":" + std::to_string(line_number) + ": column '" + name +
-                                   "' is not one of x, n, v_x, v_y, T");
+          throw std::runtime_error(path + ":" + std::to_string(line_number) + ": column " +
+                                   quoted(name) + " is not one of x, n, v_x, v_y, T");
         }
         if (std::find(order.begin(), order.end(), c) != order.end()) {
           throw std::runtime_error(path + ":" + std::to_string(line_number) + ": column '" + name +
@@ -94,8 +116,8 @@ ProfileTable read_csv(const std::string& path) {
       char* end = nullptr;
       const double v = std::strtod(cells[i].c_str(), &end);
       if (cells[i].empty() || *end != '\0') {
-        throw std::runtime_error(path + ":" + std::to_string(line_number) + ": '" + cells[i] +
-                                 "' is not a number");
+        throw std::runtime_error(path + ":" + std::to_string(line_number) + ": " +
+                                 quoted(cells[i]) + " is not a number");
       }
       order[i]->push_back(v);
     }
@@ -113,14 +135,21 @@ ProfileTable read_hdf5(const std::string& path, const std::string& group_name) {
     const H5::Group group = file.openGroup(group_name);
     for (const auto& name : profile_table_columns()) {
       if (!group.nameExists(name)) continue;
-      const auto a = h5::read_doubles(group, name);
+      h5::DoubleArray a;
+      try {
+        a = h5::read_doubles(group, name);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ":" + group_name + ": " + e.what());
+      }
       if (a.shape.size() != 1) {
         throw std::runtime_error(path + ":" + group_name + "/" + name + " is not 1D");
       }
       *column(t, name) = a.values;
     }
   } catch (const H5::Exception& e) {
-    throw std::runtime_error("cannot read group " + group_name + " of " + path + " as HDF5");
+    const std::string why = h5::hdf5_open_problem(path);
+    throw std::runtime_error(
+        why.empty() ? "cannot read group " + group_name + " of " + path + " as HDF5" : why);
   }
   require_columns(t, path + ":" + group_name);
   return t;
@@ -179,13 +208,8 @@ std::optional<std::string> profile_table_problem(const ProfileTable& t) {
   return std::nullopt;
 }
 
-double periodic_mean(const std::vector<double>& x, const std::vector<double>& y) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const std::size_t j = (i + 1) % x.size();
-    sum += 0.5 * ((j == 0 ? x[0] + 1.0 : x[j]) - x[i]) * (y[i] + y[j]);
-  }
-  return sum;
+bool carries_transverse_velocity(const ProfileTable& t) {
+  return std::any_of(t.v_y.begin(), t.v_y.end(), [](double v) { return v != 0.0; });
 }
 
 std::optional<std::string> mean_density_problem(double mean) {
@@ -219,6 +243,7 @@ InitialFields profile_fields(const ProfileTable& t, Interpolation interpolation)
   f.n = periodic_interpolant(t.x, t.n, interpolation);
   f.v = periodic_interpolant(t.x, t.v_x, interpolation);
   f.T = periodic_interpolant(t.x, t.T, interpolation);
+  f.breaks = t.x;
   f.vy = t.v_y.empty() ? std::function<double(double)>([](double) { return 0.0; })
                        : periodic_interpolant(t.x, t.v_y, interpolation);
   return f;

@@ -24,11 +24,13 @@ const std::vector<std::string>& profile_table_columns();
 // span the period (the gap x_0 + 1 - x_last more than twice the largest spacing of the rows).
 std::optional<std::string> profile_table_problem(const ProfileTable& table);
 
-// The mean of column y over the period (the periodic trapezoid rule on the rows).
-double periodic_mean(const std::vector<double>& x, const std::vector<double>& y);
+// True if the table has a v_y column with a value other than 0.
+bool carries_transverse_velocity(const ProfileTable& table);
 
 // n is in units of the mean density n0 (docs/physics.md §1): the reason why a profile whose
-// mean density is `mean` is refused, or nullopt if it is 1 within kMeanDensityTolerance.
+// mean density is `mean` is refused, or nullopt if it is 1 within kMeanDensityTolerance. The
+// mean is the integral of the density the run uses (the table's interpolant, the formula):
+// mean_density(fields), hydro/field_integrals.hpp.
 inline constexpr double kMeanDensityTolerance = 1e-3;
 std::optional<std::string> mean_density_problem(double mean);
 

@@ -111,6 +111,14 @@ Profile tabulate(const ParticleScene& scene, const hydro::InitialFields& f) {
   return p;
 }
 
+}  // namespace
+
+void check_sampled_profile(const ParticleScene& scene, const hydro::InitialFields& f) {
+  (void)tabulate(scene, f);
+}
+
+namespace {
+
 // One disk's velocity at scaled position xs: the local flow plus a Maxwellian of the local
 // temperature (T = m <c_x^2> per component), appended as an xyz triplet.
 void append_velocity(std::vector<double>& v, const hydro::InitialFields& f, double xs,

@@ -35,6 +35,12 @@ struct ParticleSample {
 inline constexpr long long kStripParticles = 100000;
 int strip_count(const ParticleScene& scene);
 
+// Evaluates the fields where the sampler tabulates its profile; throws what sampling would
+// (hydro::InitialFieldError for a field that is not finite there, std::invalid_argument for a
+// profile that cannot be packed). A disk's own position is drawn at random, so a field that is
+// not finite only between these points is found when that disk is sampled.
+void check_sampled_profile(const ParticleScene& scene, const hydro::InitialFields& scaled);
+
 // Throws std::invalid_argument (one line) if the profile cannot be packed: a local area
 // fraction above 0.5 anywhere, or no free spot found for a particle after many tries.
 // The same seed gives the same sample on every rank and platform. The whole box: every strip.

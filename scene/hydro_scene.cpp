@@ -6,6 +6,7 @@
 
 #include "hydro/blowup_extrapolation.hpp"
 #include "hydro/cell_fields.hpp"
+#include "hydro/diagnostics.hpp"
 #include "hydro/flow_by_inertia.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/haff_deviation.hpp"
@@ -248,26 +249,43 @@ HydroScene hydro_scene_from(const CaseConfig& c) {
     throw ConfigError(c.origin("convergence.cells") + ": convergence.cells: " + mesh);
   if (const auto problem = hydro::initial_parameter_problem(ini, s.transverse)) {
     const std::string key = "initial." + problem->parameter;
-    throw ConfigError(c.origin(key) + ": " + key + " = " + format_value(c.value(key)) + ": " +
-                      problem->reason);
+    throw ConfigError(c.origin(key) + ": " + key + " = " + abbreviated(format_value(c.value(key))) +
+                      ": " + problem->reason);
   }
   check_mode_counts(c, s);
   check_resolved_modes(c, s.cells);
   check_convergence_study(c, s);
-  // In a comparison the hydro runs to md.t_end instead (md_scene_from checks that run).
-  if (c.boolean("hydro.enabled") && !c.boolean("compare.enabled")) {
-    check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
-  }
-  const auto fields = hydro::make_initial_fields(ini, *make_hydro_closure(s));
-  const auto state = hydro::discretize(fields, s.cells, s.node_offset, false);
-  for (int i = 0; i < s.cells; ++i) {
-    if (!(state.cell_mass[i] > 0.0) || !(state.cell_T[i] > 0.0)) {
-      throw ConfigError("initial.type = " + ini.type +
-                        ": the initial density or temperature is not positive in cell " +
-                        std::to_string(i) + "; lower the perturbation amplitudes");
+  try {
+    // In a comparison the hydro runs to md.t_end instead (md_scene_from checks that run).
+    if (c.boolean("hydro.enabled") && !c.boolean("compare.enabled")) {
+      check_hydro_work(c, s, ctl.t_end, "hydro.t_end");
     }
+    // The fields where every mesh of the run evaluates them (the run's and the convergence
+    // study's), before anything is written.
+    const auto fields = hydro::make_initial_fields(ini, *make_hydro_closure(s));
+    std::vector<long long> meshes = {s.cells};
+    meshes.insert(meshes.end(), s.convergence_cells.begin(), s.convergence_cells.end());
+    for (const long long cells : meshes) {
+      const auto state = hydro::discretize(fields, int(cells), s.node_offset, s.transverse);
+      for (int i = 0; i < state.cells(); ++i) {
+        if (!(state.cell_mass[i] > 0.0) || !(state.cell_T[i] > 0.0)) {
+          throw ConfigError("initial.type = " + ini.type +
+                            ": the initial density or temperature is not positive in cell " +
+                            std::to_string(i) + " of " + std::to_string(cells) +
+                            "; lower the perturbation amplitudes");
+        }
+      }
+    }
+  } catch (const hydro::InitialFieldError& e) {
+    throw initial_field_refusal(c, e);
   }
   return s;
+}
+
+ConfigError initial_field_refusal(const CaseConfig& c, const hydro::InitialFieldError& e) {
+  const std::string key = "initial." + e.parameter;
+  return ConfigError(c.origin(key) + ": " + key + " = " + abbreviated(format_value(c.value(key))) +
+                     ": " + e.what());
 }
 
 void check_hydro_work(const CaseConfig& c, const HydroScene& s, double t_end,
@@ -300,9 +318,16 @@ HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallb
                                   : hydro::make_initial_fields(scene.initial, *closure);
   out.unstable_modes = hydro::clustering_unstable_modes(*closure);
   out.shear_unstable_modes = hydro::shear_unstable_modes(*closure);
-  out.run = hydro::run_hydro(
-      *closure, hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse),
-      scene.control, progress);
+  hydro::LagrangianState initial =
+      hydro::discretize(out.fields, scene.cells, scene.node_offset, scene.transverse);
+  const hydro::Diagnostics cells0 = hydro::diagnose(initial);
+  double momentum_y = 0.0;
+  for (int j = 0; j < initial.cells() && initial.has_transverse(); ++j) {
+    momentum_y += hydro::node_mass(initial, j) * initial.node_vy[j];
+  }
+  out.initial_cells = {cells0.mass, cells0.momentum, momentum_y, cells0.energy()};
+  out.initial_given = hydro::field_totals(out.fields, scene.transverse);
+  out.run = hydro::run_hydro(*closure, std::move(initial), scene.control, progress);
   const auto& run = out.run;
   out.cell_fields = hydro::cell_field_series(run.snapshots);
 

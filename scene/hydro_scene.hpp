@@ -11,6 +11,7 @@
 #include "hydro/closure.hpp"
 #include "hydro/convergence_study.hpp"
 #include "hydro/driver.hpp"
+#include "hydro/field_integrals.hpp"
 #include "hydro/initial_conditions.hpp"
 #include "hydro/linear_mode_measurement.hpp"
 #include "hydro/singularity_analysis.hpp"
@@ -69,6 +70,10 @@ std::unique_ptr<hydro::Closure> make_hydro_closure(const HydroScene& scene);
 // The initial condition of a resolved case: initial.type and its initial.* parameters.
 hydro::InitialParameters initial_parameters_from(const CaseConfig& config);
 
+// The refusal of an initial field that is not finite where it was evaluated (the hydro's cells,
+// the particle sampler), naming the initial.* key it comes from and its value, one line.
+ConfigError initial_field_refusal(const CaseConfig& config, const hydro::InitialFieldError& e);
+
 // Reads the hydro parameters of a resolved case; throws ConfigError on combinations the
 // engine cannot run (meshes that do not nest, fields that are negative somewhere...).
 HydroScene hydro_scene_from(const CaseConfig& config);
@@ -103,6 +108,9 @@ struct HydroOutcome {
   std::optional<hydro::MeasuredRate> linear_rate;
   std::optional<hydro::ConvergenceStudy> convergence;
   int unstable_modes = 0, shear_unstable_modes = 0;
+  // The totals of the initial cells and the integrals of the fields they were built from
+  // (hydro/field_integrals.hpp): equal to round-off, the run's conservation from its first step.
+  hydro::FieldTotals initial_cells, initial_given;
 };
 
 HydroOutcome run_hydro_scene(const HydroScene& scene, const hydro::ProgressCallback& progress);

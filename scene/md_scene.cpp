@@ -314,7 +314,11 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
     refuse(c, s.given ? "md.engine" : scene_problem_key(c, spec.scene),
            "impossible particle scene: " + problem);
   }
-  spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
+  try {
+    spec.fields = hydro::make_initial_fields(hydro.initial, hydro.physics);
+  } catch (const hydro::InitialFieldError& e) {
+    throw initial_field_refusal(c, e);
+  }
   spec.seed = static_cast<std::uint64_t>(c.int_value("md.seed"));
   spec.t_end = c.real("md.t_end");
   spec.sample_interval = c.real("md.sample_interval");
@@ -371,6 +375,16 @@ std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydr
     (void)make_engine(s, "");
   } catch (const std::invalid_argument& e) {
     throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
+  }
+  if (!s.given) {  // the fields where the sampler tabulates them
+    try {
+      md::check_sampled_profile(spec.scene, spec.fields);
+    } catch (const hydro::InitialFieldError& e) {
+      throw initial_field_refusal(c, e);
+    } catch (const std::invalid_argument& e) {  // the sampler's profile cannot be packed
+      throw ConfigError(c.origin("md.area_fraction") + ": md.area_fraction = " +
+                        format_real(spec.scene.area_fraction) + ": " + e.what());
+    }
   }
   return s;
 }

@@ -21,8 +21,12 @@ Asserted for every input, with the real CLI:
     docs/outputs.md says), the cells that ran are the cells case.toml resolved, and the
     case.toml written re-runs (--dry-run exits 0).
 
+With --kind files (or both), the inputs are instead the files a scene reads: mutated CSV and
+HDF5 tables and snapshot files (scripts/fuzz_files.py), run as initial.type = "table" or
+"snapshot" with the same assertions.
+
 Usage: fuzz_cases.py --granvv build/granvv [--count 2000] [--seed 1] [--real-fraction 0.1]
-                     [--timeout 120] [--jobs 1] [--work DIR]
+                     [--timeout 120] [--jobs 1] [--work DIR] [--kind cases|files|both]
 Prints the counts; exits 1 if any input broke an assertion (each is printed with its command).
 """
 import argparse
@@ -42,6 +46,7 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 # Scenes cheap enough to run for real after shrinking (hydro: a few dozen cells; particles: a
 # few hundred disks for a short time).
@@ -162,7 +167,14 @@ def make_input(rng, scenes, keys_of, real_fraction):
     if rng.random() < 0.03:  # a non-UTF-8 value or a long one through argv
         key = rng.choice(["case.name", "case.description", "md.kernel", "initial.type"])
         sets.append(key.encode() + b"=" + rng.choice([b"a\xff\xfeb", b"x" * 5000, b"\xc0\xaf"]))
-    return scene, file_bytes, sets, real
+    return scene, file_bytes, sets, real, {}
+
+
+def make_file_input(rng, base_snapshot, real_fraction):
+    """A mutated table or snapshot file as an input (the case file untouched)."""
+    import fuzz_files
+    scene, files, sets = fuzz_files.make_file_input(rng, base_snapshot)
+    return scene, None, sets, rng.random() < real_fraction, files
 
 
 def run(cmd, timeout, cwd, env):
@@ -220,9 +232,11 @@ def hydro_nan(path):
 
 def check_one(index, args, item, env):
     """Runs one input; returns (category, problem or None, command text)."""
-    scene, file_bytes, sets, real = item
+    scene, file_bytes, sets, real, files = item
     work = Path(tempfile.mkdtemp(prefix="fuzz-%d-" % index, dir=args.work))
     try:
+        for name, data in files.items():
+            (work / name).write_bytes(data)
         case = scene
         if file_bytes is not None:
             case = str(work / (scene + ".toml"))
@@ -239,7 +253,11 @@ def check_one(index, args, item, env):
         cmd += ["--out", str(out), "--quiet", "--no-report"]
         if not real:
             cmd.append("--dry-run")
-        text = " ".join(shlex.quote(os.fsdecode(c)) if isinstance(c, bytes) else shlex.quote(c)
+        if files:
+            text = "(in a folder with %s) " % ", ".join(files)
+        else:
+            text = ""
+        text += " ".join(shlex.quote(os.fsdecode(c)) if isinstance(c, bytes) else shlex.quote(c)
                         for c in cmd)
         code, stdout, stderr, hung = run(cmd, args.timeout, work, env)
         kind = ("run" if real else "dry") + ":"
@@ -314,6 +332,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=120.0)
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--work", default=None)
+    ap.add_argument("--kind", choices=["cases", "files", "both"], default="cases")
     args = ap.parse_args()
     args.granvv = os.path.abspath(args.granvv)
     env = dict(os.environ)
@@ -324,7 +343,16 @@ def main():
     rng = random.Random(args.seed)
     scenes = sorted(p.stem for p in (ROOT / "cases").glob("*.toml"))
     keys_of = {s: resolved_keys(args.granvv, s, env) for s in scenes}
-    items = [make_input(rng, scenes, keys_of, args.real_fraction) for _ in range(args.count)]
+    base_snapshot = None
+    if args.kind != "cases":
+        import fuzz_files
+        base_snapshot = fuzz_files.make_base_snapshot(args.granvv, args.work, env, run)
+
+    def one():
+        if args.kind == "files" or (args.kind == "both" and rng.random() < 0.5):
+            return make_file_input(rng, base_snapshot, args.real_fraction)
+        return make_input(rng, scenes, keys_of, args.real_fraction)
+    items = [one() for _ in range(args.count)]
     counts, failures = {}, []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futures = [pool.submit(check_one, i, args, item, env) for i, item in enumerate(items)]

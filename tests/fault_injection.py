@@ -829,6 +829,226 @@ class MpiCommands(FolderState):
         self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok"])
 
 
+# A scene's input files and formulas as a new user writes them: each refused with one line and
+# exit 2 before anything is written, or run with the totals the fields hold.
+TINY = ["--set", "hydro.cells=64", "--set", "convergence.cells=[]", "--set", "hydro.t_end=0.01",
+        "--set", "hydro.output_times=[0.01]", "--quiet", "--no-report"]
+
+
+def initial(kind, path, *more):
+    out = ["--set", f'initial.type="{kind}"', "--set", f'initial.from="{path}"']
+    for m in more:
+        out += ["--set", m]
+    return out
+
+
+def write_csv(path, columns, rows, prefix=b""):
+    text = ",".join(columns) + "\n" + "".join(",".join(repr(float(v)) for v in r) + "\n"
+                                              for r in rows)
+    Path(path).write_bytes(prefix + text.encode())
+
+
+class InputFiles(FolderState):
+    def refused(self, args, *needles):
+        d = self.tmp / "refused"
+        r = run(args + ["--out", str(d)])
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertLess(len(r.stderr), 600, r.stderr)
+        for needle in needles:
+            self.assertIn(needle, r.stderr)
+        self.assertFalse(d.exists(), "a refused run made its output folder")
+        return r.stderr
+
+    def snapshot(self):
+        """A hydro run's results.h5 with a snapshot at t = 0.25."""
+        d = self.tmp / "source"
+        self.good_run(d)
+        return d / "results.h5"
+
+    def test_snapshot_without_or_with_short_density(self):
+        source = self.snapshot()
+        missing, short = self.tmp / "missing_n.h5", self.tmp / "short_n.h5"
+        shutil.copy(source, missing)
+        shutil.copy(source, short)
+        with h5py.File(missing, "a") as f:
+            del f["hydro/fields/n"]
+        with h5py.File(short, "a") as f:
+            n = f["hydro/fields/n"][()]
+            del f["hydro/fields/n"]
+            f["hydro/fields/n"] = n[:, :10]
+        for path in (missing, short):
+            self.refused(["single_mode"] + initial("snapshot", path, "initial.time=0.25") + TINY,
+                         "initial.from", "column n has")
+
+    def test_table_declaring_2_to_the_40_rows(self):
+        path = self.tmp / "huge.h5"
+        with h5py.File(path, "w") as f:
+            f.create_dataset("x", shape=(2**40,), chunks=(1024,), dtype="f8")
+            for c in ("n", "v_x", "T"):
+                f[c] = np.ones(8)
+        self.assertLess(path.stat().st_size, 20000)
+        for extra in (["--dry-run"], TINY):
+            self.refused(["haff"] + initial("table", path) + extra, "initial.from", "declares")
+
+    def test_table_of_strings(self):
+        path = self.tmp / "strings.h5"
+        with h5py.File(path, "w") as f:
+            f["x"] = np.array([b"a", b"b", b"c", b"d"])
+            for c in ("n", "v_x", "T"):
+                f[c] = np.ones(4)
+        self.refused(["haff"] + initial("table", path) + ["--dry-run"], "does not hold numbers")
+
+    def test_csv_with_byte_order_mark_runs(self):
+        path = self.tmp / "bom.csv"
+        x = np.arange(16) / 16 - 0.5
+        write_csv(path, ["x", "n", "v_x", "T"],
+                  [(a, 1 + 0.1 * np.cos(2 * np.pi * a), 0, 1) for a in x], prefix=b"\xef\xbb\xbf")
+        d = self.tmp / "bom"
+        r = run(["haff"] + initial("table", path) + TINY + ["--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(summary(d)["status"], "ok")
+        path.write_bytes(b"\xff\xfe" + "x,n,v_x,T\n".encode("utf-16-le"))
+        self.refused(["haff"] + initial("table", path) + ["--dry-run"], "UTF-16")
+
+    def test_snapshot_held_open_for_writing(self):
+        path = self.tmp / "writing.h5"
+        shutil.copy(self.snapshot(), path)
+        env = dict(os.environ)
+        env.pop("HDF5_USE_FILE_LOCKING", None)
+        holder = subprocess.Popen(
+            [sys.executable, "-c", "import h5py, sys, time\n"
+             "f = h5py.File(sys.argv[1], 'a'); print('open', flush=True); time.sleep(60)", str(path)],
+            stdout=subprocess.PIPE, text=True, env=env)
+        try:
+            self.assertEqual(holder.stdout.readline().strip(), "open")
+            self.refused(["single_mode"] + initial("snapshot", path, "initial.time=0.25") + TINY,
+                         "open for writing in another process")
+        finally:
+            holder.kill()
+            holder.wait()
+
+    def test_formula_longer_than_the_parser_takes(self):
+        formula = "1" + "+0*x" * 6000  # 24001 characters
+        err = self.refused(["haff", "--set", 'initial.type="expression"', "--set",
+                            f'initial.density="{formula}"', "--dry-run"], "initial.density",
+                           "characters long")
+        self.assertEqual(err.count("characters long"), 1, err)
+
+    def test_nan_between_the_check_points_is_refused_before_the_run(self):
+        # NaN on a set between the 8193 check points (and the sampler's own grid), in a
+        # particle scene that checkpoints: refused with the key, and nothing to resume.
+        v = "0.1*sin(2*pi*x) + ((abs(x) < 0.25 && abs(sin(16384*pi*(x+0.5))) > 0.9) ? 0/0 : 0)"
+        err = self.refused(MD_QUICK + ["--set", 'initial.type="expression"', "--set",
+                                       f'initial.velocity="{v}"', "--set",
+                                       "md.checkpoint_interval=0.3"], "initial.velocity",
+                           "velocity is", "between the points it was checked at")
+        self.assertNotIn("resume", err)
+
+    def test_nan_velocity_at_one_hydro_node_is_named(self):
+        # A node of the 500-cell mesh (x = 0.001) that no check point is near.
+        v = "(abs(x - 0.001) < 1e-6) ? 0/0 : 0.01*sin(2*pi*x)"
+        self.refused(["single_mode", "--set", "convergence.cells=[]", "--set",
+                      'initial.type="expression"', "--set", f'initial.velocity="{v}"',
+                      "--quiet", "--no-report"], "initial.velocity", "velocity is", "x = ")
+
+    def assert_totals(self, d):
+        """The hydro's initial cells hold the integrals of the fields to 1e-12."""
+        t = summary(d)["hydro"]["initial_totals"]
+        g = t["given"]
+        self.assertLessEqual(t["relative_difference"], 1e-12, t)
+        self.assertAlmostEqual(t["mass"], g["mass"], delta=1e-12 * g["mass"])
+        self.assertAlmostEqual(t["energy"], g["energy"], delta=1e-12 * g["energy"])
+        return t
+
+    def test_table_mean_density_is_that_of_the_interpolant(self):
+        # Four irregular rows whose trapezoid mean is 1: the monotone cubic holds another mass.
+        path = self.tmp / "irregular.csv"
+        x, n = np.array([-0.5, -0.2, 0.0, 0.45]), np.array([0.5, 1.0, 4.0, 0.5])
+        xx, nn = np.append(x, x[0] + 1), np.append(n, n[0])
+        n = n / np.sum(0.5 * np.diff(xx) * (nn[1:] + nn[:-1]))
+        write_csv(path, ["x", "n", "v_x", "T"], [(a, b, 0, 1) for a, b in zip(x, n)])
+        err = self.refused(["haff"] + initial("table", path) + ["--dry-run"], "mean density",
+                           "divide n by")
+        divisor = float(err.split("divide n by ")[1].split()[0])
+        write_csv(path, ["x", "n", "v_x", "T"], [(a, b / divisor, 0, 1) for a, b in zip(x, n)])
+        d = self.tmp / "irregular"
+        r = run(["haff"] + initial("table", path) + TINY + ["--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        t = self.assert_totals(d)
+        self.assertAlmostEqual(t["mass"], 1.0, delta=1e-3)
+
+    def test_snapshot_of_a_steep_state_conserves_or_is_refused(self):
+        # single_mode's own outputs up to t = 3.225 continue onto 500 uniform cells with the
+        # snapshot's mass (the cells integrate the interpolant exactly); its last state, whose
+        # cells are too uneven to interpolate with mean density 1, is refused.
+        d = self.tmp / "steep"
+        r = run(["single_mode", "--set", "convergence.cells=[]", "--quiet", "--no-report",
+                 "--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        source = d / "results.h5"
+        with h5py.File(source, "r") as f:
+            last = float(f["hydro/fields/t"][-1])
+        more = ["--set", "convergence.cells=[]", "--set", "hydro.t_end=0.01", "--set",
+                "hydro.output_times=[0.01]", "--quiet", "--no-report"]
+        self.refused(["single_mode"] + initial("snapshot", source, "initial.time=%r" % last) +
+                     more, "initial.from", "mean density", "choose an earlier initial.time")
+        for t in (1.0, 3.2, 3.225):
+            c = self.tmp / "continued"
+            r = run(["single_mode"] + initial("snapshot", source, "initial.time=%r" % t) + more +
+                    ["--out", str(c)])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            totals = self.assert_totals(c)
+            self.assertAlmostEqual(totals["mass"], 1.0, delta=1e-3)
+            shutil.rmtree(c)
+
+    def test_transverse_velocity_of_a_table_or_formula(self):
+        path = self.tmp / "vy.csv"
+        x = np.arange(16) / 16 - 0.5
+        write_csv(path, ["x", "n", "v_x", "v_y", "T"],
+                  [(a, 1, 0, 0.01 * np.sin(2 * np.pi * a), 1) for a in x])
+        self.refused(["haff"] + initial("table", path) + ["--dry-run"], "v_y column",
+                     "hydro.transverse_velocity = true")
+        formula = ["--set", 'initial.type="expression"', "--set",
+                   'initial.transverse_velocity="0.01*sin(2*pi*x)"']
+        self.refused(["haff"] + formula + ["--dry-run"], "initial.transverse_velocity",
+                     "hydro.transverse_velocity = true")
+        # Both kinds are taken by the hydro when it carries v_y, and its momentum is theirs.
+        for args in (initial("table", path), formula):
+            d = self.tmp / "vy_run"
+            r = run(["haff"] + args + ["--set", "hydro.transverse_velocity=true"] + TINY +
+                    ["--out", str(d)])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assert_totals(d)
+            shutil.rmtree(d)
+        # Two transverse velocities: refused, naming both keys.
+        self.refused(["haff"] + formula + ["--set", "initial.transverse_amplitude=0.02", "--set",
+                                           "hydro.transverse_velocity=true", "--dry-run"],
+                     "initial.transverse_amplitude", "initial.transverse_velocity")
+
+
+class StatusesThatCouldOverstate(FolderState):
+    def test_atlas_with_no_budget_does_not_claim_convergence(self):
+        d = self.tmp / "atlas"
+        r = subprocess.run([GRANVV, "atlas", "haff", "--budget", "1e-9", "--quiet", "--out",
+                            str(d)], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(d / "atlas.json") as f:
+            reference = json.load(f)["reference"]
+        self.assertEqual(reference["convergence"], {})
+        self.assertIsNone(reference["converged_to_tolerance"])
+        self.assertIn("not measured", reference["converged_reason"])
+
+    def test_elastic_gas_has_no_haff_deviation(self):
+        d = self.tmp / "elastic"
+        r = run(MD_QUICK + ["--set", "md.restitution=1", "--out", str(d)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        md = summary(d)["md"]
+        for key in ("haff_t0_deviation", "haff_t0_deviation_paper", "haff_t0_deviation_dilute",
+                    "haff_t0_theory", "haff_t0_within_tolerance"):
+            self.assertIsNone(md[key], key)
+
+
 if __name__ == "__main__":
     GRANVV = str(Path(sys.argv.pop(1)).resolve())
     unittest.main(verbosity=2)

@@ -411,7 +411,7 @@ INSTANTIATE_TEST_SUITE_P(
                 {"initial.source", "has no /md/fields"}},
         Refusal{"snapshot_not_results",
                 "--set initial.type=snapshot --set initial.from={DIR}/good.csv",
-                {"initial.from", "cannot read"}}));
+                {"initial.from", "is not an HDF5 file"}}));
 
 }  // namespace
 }  // namespace granvv
