@@ -10,6 +10,7 @@
 #include "hydro/haff.hpp"
 #include "md_bridge/hard_disk_theory.hpp"
 #include "scene/initial_provenance.hpp"
+#include "scene/input_fingerprint.hpp"
 #include "scene/json_numbers.hpp"
 
 namespace granvv::app {

@@ -9,8 +9,10 @@
 #include <stdexcept>
 
 #include "hydro/initial_conditions.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
+#include "scene/md_scene.hpp"
 
 namespace granvv::app {
 namespace {
@@ -122,8 +124,23 @@ json input_fingerprint(const CaseConfig& config, const std::vector<std::string>&
     values[key] = value;
     text += key + " = " + value + "\n";
   }
+  std::vector<std::string> paths = hydro::initial_files(initial_parameters_from(config));
+  // The particles another program wrote, where the case's engine replays them.
+  const std::string engine = config.string("md.engine");
+  if (config.boolean("md.enabled") && md::replays_given_particles(engine)) {
+    md::EngineSettings settings;
+    md::EngineTexts texts;
+    read_engine_keys(config, engine, settings, texts);
+    try {
+      if (const auto given = md::given_particles(engine, settings, texts)) {
+        for (const auto& member : given->members)
+          paths.insert(paths.end(), member.begin(), member.end());
+      }
+    } catch (const std::invalid_argument&) {  // refused when the run reads them
+    }
+  }
   json files = json::array();
-  for (const auto& path : hydro::initial_files(initial_parameters_from(config))) {
+  for (const auto& path : paths) {
     std::string digest;
     try {
       digest = file_sha256(path);

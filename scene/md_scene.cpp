@@ -277,23 +277,27 @@ SignalToNoise initial_mode_signal_to_noise(const MdScene& scene) {
   return compare::mode_signal_to_noise(scene.spec.fields.v, scene.spec.scene.particles);
 }
 
+void read_engine_keys(const CaseConfig& c, const std::string& engine, md::EngineSettings& settings,
+                      md::EngineTexts& texts) {
+  for (const KeySpec& key : case_schema()) {
+    const auto owner = key_owner(key.key);
+    const std::string section = key.section();
+    if ((section != "md" && section.rfind("md.", 0) != 0) || (owner && owner->model != engine))
+      continue;
+    if (key.type == ValueType::real) settings[key.key] = c.real(key.key);
+    if (key.type == ValueType::integer) settings[key.key] = double(c.integer(key.key));
+    if (key.type == ValueType::boolean) settings[key.key] = c.boolean(key.key) ? 1 : 0;
+    if (owner && key.type == ValueType::string) texts[key.key] = {c.string(key.key)};
+    if (owner && key.type == ValueType::string_array) texts[key.key] = c.strings(key.key);
+  }
+}
+
 std::optional<MdScene> md_scene_from(const CaseConfig& c, const HydroScene& hydro) {
   if (!c.boolean("md.enabled")) return std::nullopt;
   MdScene s;
   auto& spec = s.spec;
   s.engine = c.string("md.engine");
-  // The [md] keys every scene has and the engine's own (not another engine's).
-  for (const KeySpec& key : case_schema()) {
-    const auto owner = key_owner(key.key);
-    const std::string section = key.section();
-    if ((section != "md" && section.rfind("md.", 0) != 0) || (owner && owner->model != s.engine))
-      continue;
-    if (key.type == ValueType::real) s.engine_settings[key.key] = c.real(key.key);
-    if (key.type == ValueType::integer) s.engine_settings[key.key] = double(c.integer(key.key));
-    if (key.type == ValueType::boolean) s.engine_settings[key.key] = c.boolean(key.key) ? 1 : 0;
-    if (owner && key.type == ValueType::string) s.engine_texts[key.key] = {c.string(key.key)};
-    if (owner && key.type == ValueType::string_array) s.engine_texts[key.key] = c.strings(key.key);
-  }
+  read_engine_keys(c, s.engine, s.engine_settings, s.engine_texts);
   const double r_key = c.real("md.restitution");
   const double r = r_key > 0.0 ? r_key : 1.0 - 2.0 * hydro.physics.q;
   try {

@@ -50,6 +50,11 @@ struct MdScene {
 // engine sees them.
 std::optional<MdScene> md_scene_from(const CaseConfig& config, const HydroScene& hydro);
 
+// The [md] keys every scene has and the engine's own (not another engine's), as the engine's
+// setup takes them: numbers in settings, strings and lists of strings in texts.
+void read_engine_keys(const CaseConfig& config, const std::string& engine,
+                      md::EngineSettings& settings, md::EngineTexts& texts);
+
 // The scene's engine; its log goes into log_dir ("" = none), collective over comm (by default
 // the particle ranks, md_bridge/mpi_environment.hpp). Opens nothing yet.
 std::unique_ptr<md::ParticleEngine> make_engine(const MdScene& scene, const std::string& log_dir,
