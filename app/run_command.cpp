@@ -519,6 +519,33 @@ void keep_finished_particles(RunContext& c, const RunMetadata& meta, const MdOut
   }
 }
 
+// Ensemble members at a time (--jobs): as asked, or the machine's cores shared among its ranks.
+int member_jobs(const RunOptions& options, const Ranks& ranks) {
+  if (options.jobs > 0) return options.jobs;
+  const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+  const int here = ranks.size > 1 ? md::MpiEnvironment::ranks_on_this_machine(MPI_COMM_WORLD) : 1;
+  return std::max(1, cores / here);
+}
+
+// The files the initial state is read from, with their SHA-256, in the summary and the log.
+void record_initial_files(const HydroScene& scene, nlohmann::json& summary, spdlog::logger& log) {
+  if (hydro::initial_files(scene.initial).empty()) return;
+  summary["initial"] = initial_provenance(scene.initial);
+  for (const auto& file : summary["initial"]["files"]) {
+    log.info("initial state from {} (sha256 {})", file["path"].get<std::string>(),
+             file["sha256"].get<std::string>());
+  }
+}
+
+// A run that failed: its status and reason in the summary (and its particle part's); exit 1.
+int record_failure(const std::string& message, nlohmann::json& summary, spdlog::logger& log) {
+  log.error("run failed: {}", message);
+  summary["status"] = "failed";
+  summary["error"] = message;
+  if (summary["md"].is_object()) summary["md"]["error"] = message;
+  return 1;
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -550,15 +577,7 @@ int run_command(const RunOptions& options) {
   // rank learns whether the folder could be opened.
   const Ranks ranks = join_ranks(md_scene.has_value());
   const bool writer = ranks.writer();
-  if (md_scene) {  // members at a time: the machine's cores shared among its ranks
-    const int cores = std::max(1, int(std::thread::hardware_concurrency()));
-    md_scene->jobs =
-        options.jobs > 0
-            ? options.jobs
-            : std::max(1, cores / (ranks.size > 1
-                                       ? md::MpiEnvironment::ranks_on_this_machine(MPI_COMM_WORLD)
-                                       : 1));
-  }
+  if (md_scene) md_scene->jobs = member_jobs(options, ranks);
   const fs::path dir =
       options.out_dir.empty() ? fs::path("out") / config.name() : fs::path(options.out_dir);
   std::optional<OutputFolder> folder;
@@ -614,13 +633,7 @@ int run_command(const RunOptions& options) {
       {"compare", nullptr}};
   if (writer) summary["run_id"] = folder->run_id();
   summary["inputs"] = inputs;
-  if (!hydro::initial_files(scene.initial).empty()) {  // the files the initial state is read from
-    summary["initial"] = initial_provenance(scene.initial);
-    for (const auto& file : summary["initial"]["files"]) {
-      log->info("initial state from {} (sha256 {})", file["path"].get<std::string>(),
-                file["sha256"].get<std::string>());
-    }
-  }
+  record_initial_files(scene, summary, *log);
   RunContext context{options,     config,  scene,
                      md_scene,    ranks,   writer,
                      dir,         work,    writer ? &*folder : nullptr,
@@ -654,18 +667,9 @@ int run_command(const RunOptions& options) {
     return 2;
   } catch (const H5::Exception& e) {
     mark_hdf5_broken();
-    const std::string message = e.getFuncName() + ": " + e.getDetailMsg();
-    log->error("run failed: {}", message);
-    summary["status"] = "failed";
-    summary["error"] = message;
-    if (summary["md"].is_object()) summary["md"]["error"] = message;
-    exit_code = 1;
+    exit_code = record_failure(e.getFuncName() + ": " + e.getDetailMsg(), summary, *log);
   } catch (const std::exception& e) {
-    log->error("run failed: {}", e.what());
-    summary["status"] = "failed";
-    summary["error"] = e.what();
-    if (summary["md"].is_object()) summary["md"]["error"] = e.what();
-    exit_code = 1;
+    exit_code = record_failure(e.what(), summary, *log);
   }
   if (md && !interrupted) keep_finished_particles(context, meta, *md);
   if (!writer) return interrupted ? interrupted_exit_code() : exit_code;

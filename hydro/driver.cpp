@@ -52,6 +52,30 @@ std::string non_finite_initial_state(const LagrangianState& s) {
   return "";
 }
 
+// A step of dt, halved until the integrator accepts it (at most 30 tries): dt becomes the step
+// taken, and each rejection is counted.
+StepOutcome step_halving(HydroIntegrator& integrator, LagrangianState& s, double& dt,
+                         CellGeometry& cells, long long& rejected) {
+  StepOutcome step;
+  for (int attempt = 0; attempt < 30; ++attempt) {
+    step = integrator.step(s, dt, cells);
+    if (step.accepted) break;
+    ++rejected;
+    dt *= 0.5;
+  }
+  return step;
+}
+
+// The times the peak density first crossed each level within the step from (t0, n0) to (t1, n1).
+void note_crossings(const std::vector<double>& levels, double t0, double n0, double t1, double n1,
+                    std::map<double, double>& crossing_times) {
+  for (double level : levels) {
+    if (n0 < level && n1 >= level && !crossing_times.count(level)) {
+      crossing_times[level] = crossing_time(t0, n0, t1, n1, level);
+    }
+  }
+}
+
 }  // namespace
 
 RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl& control,
@@ -142,14 +166,9 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
                            " in double precision";
       break;
     }
-    StepOutcome step;
-    for (int attempt = 0; attempt < 30; ++attempt) {
-      step = integrator.step(s, dt, cells);
-      if (step.accepted) break;
-      ++result.rejected_steps;
-      dt *= 0.5;
-      clamped = false;
-    }
+    const auto rejected_before = result.rejected_steps;
+    const StepOutcome step = step_halving(integrator, s, dt, cells, result.rejected_steps);
+    if (result.rejected_steps != rejected_before) clamped = false;  // dt is no longer the target's
     if (!step.accepted) {
       result.status = RunStatus::failed;
       result.stop_reason = "no admissible time step at t = " + std::to_string(s.t) +
@@ -170,11 +189,8 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
     validity = measure_validity(s, cells, scales);
     result.validity.note(validity, s.t);
     drift(d);
-    for (double level : control.crossing_densities) {
-      if (prev.n_max < level && d.n_max >= level && !result.crossing_times.count(level)) {
-        result.crossing_times[level] = crossing_time(s.t - dt, prev.n_max, s.t, d.n_max, level);
-      }
-    }
+    note_crossings(control.crossing_densities, s.t - dt, prev.n_max, s.t, d.n_max,
+                   result.crossing_times);
     const bool singular = d.n_max >= control.stop_density || d.min_width <= control.min_cell_width;
     if (result.steps % control.series_every == 0 || singular || lands_on_output) {
       record(dt, d);

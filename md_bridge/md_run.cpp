@@ -235,7 +235,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
   if (progress) {
     engine.set_within_segment([&](double now) {
       progress({now, spec.t_end, result.series.T.empty() ? 0.0 : result.series.T.back(), wall(),
-                engine.steps()});
+                engine.steps(), engine.cost()});
     });
   }
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step

@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "hydro/closure.hpp"
+#include "md_bridge/particle_engine_registry.hpp"
 
 namespace granvv::app {
 
@@ -702,6 +703,8 @@ std::optional<std::vector<std::string>> models_run(const CaseConfig& c, const st
                                                    RunningCommand command) {
   if (selector == "md.engine") {
     if (!c.boolean("md.enabled")) return std::nullopt;
+    // The atlas weighs every registered engine on a particle scene (models/family_particles).
+    if (command == RunningCommand::atlas) return md::particle_engine_names();
     return std::vector<std::string>{c.string("md.engine")};
   }
   if (!c.boolean("hydro.enabled")) return std::nullopt;

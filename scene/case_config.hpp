@@ -95,8 +95,9 @@ class CaseConfig {
 // compare.enabled, the compare.closures when hydro.enabled; a part that does not run reads none
 // of its keys, so none of them is refused. A key at its default is what every resolved
 // case.toml lists, and is not refused.
-// `granvv atlas` runs more closures than the case names: every closure on every ladder
-// (hydro/closure.hpp, closure_on_every_ladder) beside the case's own (RunningCommand::atlas).
+// `granvv atlas` runs more models than the case names: every registered particle engine, and
+// every closure on every ladder (hydro/closure.hpp, closure_on_every_ladder) beside the case's
+// own (RunningCommand::atlas).
 enum class RunningCommand { run, atlas };
 void refuse_keys_of_models_not_run(const CaseConfig& config,
                                    RunningCommand command = RunningCommand::run);

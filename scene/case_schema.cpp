@@ -291,7 +291,8 @@ std::vector<KeySpec> rows_without_declared() {
        "the field whose k = 1 mode measures compare.transport"},
       {"compare.transport_phase", kString, "sin", one_of(compare::mode_phase_names()),
        "the part of the field's k = 1 mode it is read from: sin 2 pi x or cos 2 pi x"},
-      {"compare.transport_signals", kStrings, kEmpty, distinct_choices(transport_signal_choices()),
+      {"compare.transport_signals", kStrings, kEmpty,
+       distinct_choices_or_none(transport_signal_choices()),
        "the modes a measurement fits at once, each \"<field>:<sin|cos>\" (a sound wave: "
        "[\"v_x:sin\", \"n:cos\", \"T:cos\"]); [] = compare.transport_field's "
        "compare.transport_phase part alone"},
@@ -598,6 +599,11 @@ Constraint distinct_choices(std::vector<std::string> choices) {
   c.distinct_non_empty = true;
   return c;
 }
+Constraint distinct_choices_or_none(std::vector<std::string> choices) {
+  Constraint c = distinct_choices(std::move(choices));
+  c.may_be_empty = true;
+  return c;
+}
 Constraint increasing(Constraint each) {
   each.strictly_increasing = true;
   return each;
@@ -667,7 +673,7 @@ std::string with_description(std::string text, const KeySpec& spec) {
 std::optional<std::string> string_array_violation(const KeySpec& spec,
                                                   const std::vector<std::string>& xs) {
   const Constraint& c = spec.constraint;
-  if (c.distinct_non_empty && xs.empty()) {
+  if (c.distinct_non_empty && !c.may_be_empty && xs.empty()) {
     return with_description("must name at least one, each " + scalar_text(c), spec);
   }
   for (std::size_t i = 0; i < xs.size(); ++i) {
@@ -760,6 +766,7 @@ std::optional<std::string> closest_match(std::string_view wrong,
 
 std::string Constraint::text() const {
   std::string s = scalar_text(*this);
+  if (distinct_non_empty && may_be_empty) return "none repeated, each " + s;
   if (distinct_non_empty) return "at least one, none repeated, each " + s;
   if (!strictly_increasing) return s;
   return s.empty() ? "strictly increasing" : "each " + s + ", strictly increasing";

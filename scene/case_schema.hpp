@@ -95,6 +95,7 @@ struct Constraint {
   bool min_exclusive = false, max_exclusive = false;
   std::vector<std::string> choices;  // strings, string arrays' elements: one of these (empty = any)
   bool distinct_non_empty = false;   // string arrays: at least one element, none repeated
+  bool may_be_empty = false;         // with distinct_non_empty: none repeated, [] allowed
   bool strictly_increasing = false;  // arrays
   bool name = false;                 // strings: non-empty, no '/', '\\', control characters,
                                      // at most kMaxNameBytes (a folder name)
@@ -115,7 +116,8 @@ Constraint closed_closed(double lo, double hi);  // [lo, hi]
 Constraint one_of(std::vector<std::string> choices);
 Constraint increasing(Constraint each = any_value());  // arrays: elements obey `each`, strictly up
 Constraint name_like();
-Constraint distinct_choices(std::vector<std::string> choices);  // string arrays
+Constraint distinct_choices(std::vector<std::string> choices);          // string arrays
+Constraint distinct_choices_or_none(std::vector<std::string> choices);  // the same, or []
 
 struct KeySpec {
   std::string key;  // dotted, e.g. "physics.K"

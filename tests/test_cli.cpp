@@ -835,10 +835,11 @@ TEST_F(CliSmallRun, SummaryJsonFollowsTheContract) {
   EXPECT_DOUBLE_EQ(snap.value("t", NAN), 0.25);
   EXPECT_GE(snap.value("n_max", NAN), 1.0);
   EXPECT_GT(snap.value("T_min", NAN), 0.0);
-  EXPECT_NEAR(snap.value("energy", NAN),
-              snap.value("energy_thermal", NAN) + snap.value("energy_kinetic", NAN) +
+  // value(key, NAN) would read a float (NAN is one): the energies as the doubles they are.
+  EXPECT_NEAR(snap["energy"].get<double>(),
+              snap["energy_thermal"].get<double>() + snap["energy_kinetic"].get<double>() +
                   snap.value("energy_kinetic_y", 0.0),
-              1e-12 * std::abs(snap.value("energy", 1.0)));
+              1e-12 * std::abs(snap["energy"].get<double>()));
 }
 
 // The derived numbers and verdicts the report reads instead of recomputing them.
