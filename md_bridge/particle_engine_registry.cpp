@@ -16,10 +16,12 @@ using WorkEstimator = ParticleWorkEstimate (*)(const ParticleWorkQuestion&);
 
 using KeyDeclaration = const EngineKeys& (*)();
 using GivenReader = std::optional<GivenParticles> (*)(const EngineSettings&, const EngineTexts&);
+using InputFiles = std::vector<std::string> (*)(const EngineTexts&);
 
 // One row per engine: its md.engine value, its maker, its work estimate, its own keys, its
 // atlas grid's keys (nullptr: none) and, for an engine that replays given particles, what its
-// files fix (nullptr: the engine moves particles sampled from the scene).
+// files fix and which files it reads (nullptr: the engine moves particles sampled from the
+// scene).
 struct EngineRow {
   std::string name;
   Maker make;
@@ -27,6 +29,7 @@ struct EngineRow {
   KeyDeclaration keys;
   KeyDeclaration atlas_keys = nullptr;
   GivenReader given = nullptr;
+  InputFiles input_files = nullptr;
 };
 
 const std::vector<EngineRow>& engines() {
@@ -35,7 +38,7 @@ const std::vector<EngineRow>& engines() {
       {"event_driven", &EventDrivenEngine::make, &event_driven_work, &EventDrivenEngine::keys,
        &EventDrivenEngine::atlas_keys},
       {"recorded", &RecordedEngine::make, &RecordedEngine::work, &RecordedEngine::keys, nullptr,
-       &RecordedEngine::given},
+       &RecordedEngine::given, &RecordedEngine::input_files},
   };
   return rows;
 }
@@ -88,6 +91,11 @@ std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
 
 bool replays_given_particles(const std::string& name) {
   return engine_row(name).given != nullptr;
+}
+
+std::vector<std::string> engine_input_files(const std::string& name, const EngineTexts& texts) {
+  const EngineRow& row = engine_row(name);
+  return row.input_files ? row.input_files(texts) : std::vector<std::string>{};
 }
 
 std::optional<GivenParticles> given_particles(const std::string& name,

@@ -39,6 +39,9 @@ std::unique_ptr<ParticleEngine> make_particle_engine(const std::string& name,
 // Whether the engine replays given particles (the recorded engine) rather than moving the
 // particles it is set up with.
 bool replays_given_particles(const std::string& name);
+// The files the engine reads (its given particles' files, globs expanded; none for an engine
+// that reads no file), unread. Throws std::invalid_argument for an entry that matches no file.
+std::vector<std::string> engine_input_files(const std::string& name, const EngineTexts& texts);
 std::optional<GivenParticles> given_particles(const std::string& name,
                                               const EngineSettings& settings,
                                               const EngineTexts& texts);

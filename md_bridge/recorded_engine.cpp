@@ -97,6 +97,14 @@ std::unique_ptr<ParticleEngine> RecordedEngine::make(const ParticleEngineSetup& 
                                           setup.comm);
 }
 
+std::vector<std::string> RecordedEngine::input_files(const EngineTexts& texts) {
+  std::vector<std::string> paths;
+  for (const auto& member : recorded_members(texts_of(texts, "md.recorded.files"))) {
+    paths.insert(paths.end(), member.begin(), member.end());
+  }
+  return paths;
+}
+
 std::optional<GivenParticles> RecordedEngine::given(const EngineSettings& settings,
                                                     const EngineTexts& texts) {
   const auto files = texts_of(texts, "md.recorded.files");

@@ -23,6 +23,9 @@ class RecordedEngine final : public ParticleEngine {
                  const RecordedOptions& options, MPI_Comm comm);
   // From the registry: md.recorded.files and the other md.recorded.* keys. Reads no file yet.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
+  // The files md.recorded.files names (globs expanded), unread: what the inputs' fingerprint
+  // hashes. Throws RecordedFileError for an entry that matches no file.
+  static std::vector<std::string> input_files(const EngineTexts& texts);
   // Every member read and checked (RecordedFileError, naming the file and the problem): what the
   // files fix, in sigma and the files' time unit. Members must agree on N, the box and the frame
   // times. std::nullopt without files (md.recorded.files = []: the engine cannot run).

@@ -126,16 +126,14 @@ json input_fingerprint(const CaseConfig& config, const std::vector<std::string>&
   }
   std::vector<std::string> paths = hydro::initial_files(initial_parameters_from(config));
   // The particles another program wrote, where the case's engine replays them.
-  const std::string engine = config.string("md.engine");
-  if (config.boolean("md.enabled") && md::replays_given_particles(engine)) {
+  if (config.boolean("md.enabled")) {
+    const std::string engine = config.string("md.engine");
     md::EngineSettings settings;
     md::EngineTexts texts;
     read_engine_keys(config, engine, settings, texts);
     try {
-      if (const auto given = md::given_particles(engine, settings, texts)) {
-        for (const auto& member : given->members)
-          paths.insert(paths.end(), member.begin(), member.end());
-      }
+      const auto given = md::engine_input_files(engine, texts);
+      paths.insert(paths.end(), given.begin(), given.end());
     } catch (const std::invalid_argument&) {  // refused when the run reads them
     }
   }

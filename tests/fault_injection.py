@@ -810,26 +810,24 @@ class MpiCommands(FolderState):
         self.assertEqual(r.stderr.count("atlas: wrote"), 1, r.stderr)
         self.assertIn("ladder", json.loads((d / "atlas.json").read_text()))
 
-    def test_a_sweep_under_mpirun_completes(self):
+    def sweep_of_two_points(self, case, swept):
+        """A two-point sweep under mpirun: exit 0, sweep.json and both points ok; its stderr."""
         d = self.tmp / "sweep"
-        r = subprocess.run(self.MPIRUN + [GRANVV, "sweep"] + QUICK +
-                           ["--set", "hydro.cells=32,48", "--out", str(d)],
+        r = subprocess.run(self.MPIRUN + [GRANVV, "sweep"] + case +
+                           ["--set", swept, "--out", str(d)],
                            capture_output=True, text=True, timeout=TIMEOUT)
         self.assertEqual(r.returncode, 0, r.stderr)
         sw = json.loads((d / "sweep.json").read_text())
         self.assertEqual(sw["status"], "ok")
         self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok"])
-        self.assertEqual(r.stderr.count("sweep: wrote"), 1, r.stderr)
+        return r.stderr
+
+    def test_a_sweep_under_mpirun_completes(self):
+        err = self.sweep_of_two_points(QUICK, "hydro.cells=32,48")
+        self.assertEqual(err.count("sweep: wrote"), 1, err)
 
     def test_a_particle_sweep_under_mpirun_completes(self):
-        d = self.tmp / "sweep"
-        r = subprocess.run(self.MPIRUN + [GRANVV, "sweep"] + MD_QUICK +
-                           ["--set", "md.seed=1,2", "--out", str(d)],
-                           capture_output=True, text=True, timeout=TIMEOUT)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        sw = json.loads((d / "sweep.json").read_text())
-        self.assertEqual(sw["status"], "ok")
-        self.assertEqual([q["status"] for q in sw["points"]], ["ok", "ok"])
+        self.sweep_of_two_points(MD_QUICK, "md.seed=1,2")
 
 
 # A scene's input files and formulas as a new user writes them: each refused with one line and

@@ -60,6 +60,26 @@ TEST(InputFingerprint, NamesTheFileThatChanged) {
   fs::remove_all(dir);
 }
 
+TEST(InputFingerprint, HoldsTheRecordedParticlesFilesUnread) {
+  // The dumps a recorded-particles case replays are inputs too: a glob's matches, each hashed.
+  // The files need not be valid dumps here: the fingerprint hashes their bytes, it does not read
+  // frames (the run refuses a bad dump with its own message).
+  const fs::path dir = fs::temp_directory_path() / ("granvv-fp-rec-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "dump.1.txt") << "ITEM: TIMESTEP\n0\n";
+  std::ofstream(dir / "dump.2.txt") << "ITEM: TIMESTEP\n10\n";
+  const std::vector<std::string> sets{
+      "md.enabled=true", "md.engine=\"recorded\"",
+      "md.recorded.files=[\"" + (dir / "dump.*.txt").string() + "\"]", "md.recorded.timestep=1.0"};
+  const auto before = fingerprint(sets);
+  ASSERT_EQ(before["files"].size(), 2u) << before.dump();
+  EXPECT_EQ(before["files"][1]["sha256"], file_sha256(dir / "dump.2.txt"));
+  std::ofstream(dir / "dump.2.txt") << "ITEM: TIMESTEP\n20\n";
+  EXPECT_NE(fingerprint_difference(before, fingerprint(sets)).find("dump.2.txt changed"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(InputFingerprint, ARecordThatIsNotAFingerprintNeverMatches) {
   const auto now = fingerprint({});
   EXPECT_EQ(fingerprint_difference(nullptr, now), "no fingerprint of its inputs");
