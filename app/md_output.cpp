@@ -10,7 +10,6 @@
 #include "hydro/haff.hpp"
 #include "md_bridge/hard_disk_theory.hpp"
 #include "scene/initial_provenance.hpp"
-#include "scene/input_fingerprint.hpp"
 #include "scene/json_numbers.hpp"
 
 namespace granvv::app {
@@ -37,13 +36,9 @@ json given_files_summary(const md::GivenParticles& given) {
   json files = json::array();
   for (std::size_t m = 0; m < given.members.size(); ++m) {
     for (const std::string& path : given.members[m]) {
-      std::error_code ec;
-      const auto absolute = std::filesystem::absolute(path, ec);
-      files.push_back({{"member", m},
-                       {"path", path},
-                       {"absolute_path", ec ? path : absolute.lexically_normal().string()},
-                       {"bytes", std::filesystem::file_size(path, ec)},
-                       {"sha256", file_sha256(path)}});
+      json file = file_provenance(path);
+      file["member"] = m;
+      files.push_back(std::move(file));
     }
   }
   return files;

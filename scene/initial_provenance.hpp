@@ -9,8 +9,11 @@
 
 namespace granvv::app {
 
-// {"type": ..., "files": [{"path", "absolute_path", "bytes", "sha256"}, ...]} (the SHA-256 of
+// One file a run read: {"path", "absolute_path", "bytes", "sha256"} (the SHA-256 of
 // scene/input_fingerprint.hpp).
+nlohmann::json file_provenance(const std::string& path);
+
+// {"type": ..., "files": [file_provenance of each file, ...]}.
 nlohmann::json initial_provenance(const hydro::InitialParameters& initial);
 
 }  // namespace granvv::app
