@@ -14,6 +14,7 @@ from markupsafe import Markup
 from . import figures_atlas, figures_compare, figures_hydro, figures_inertia, figures_md, figures_particles, figures_pressure, figures_sweep, figures_transport  # noqa: F401 - importing registers
 from .data import AtlasRun, ReportError, Run, SweepRun, is_atlas_folder, is_sweep_folder
 from .registry import draw_figures
+from .formatting import fmt
 from .tables import (atlas_tables, compare_section, engine_tables, header_rows, snapshot_table, sweep_tables,
                      sweep_verdicts)
 
@@ -88,7 +89,7 @@ def build_atlas(outdir, strict=False):
         run.outdir, ATLAS_TEMPLATE, page_name="atlas.html",
         case=run.atlas("case") or run.outdir.name, status=run.atlas("status"),
         recommendation=rec, ladder=ladder, runs=rows, skipped_runs=skipped_runs,
-        observables=run.atlas("observables") or [], times=run.atlas("times") or [],
+        observables=run.atlas("observables") or [], times=[fmt(t) for t in run.atlas("times") or []],
         sigmas=run.atlas("sigmas"), figures=figures, skipped=skipped, failed=failed, raw=json.dumps(raw, indent=2),
         generated=generated_at(), source=str(run.atlas_path),
     )
