@@ -39,8 +39,8 @@ json reference_json(const AtlasReference& ref, double tolerance) {
            measured ? json(nullptr)
                     : json("not measured: no neighbour of the reference one step coarser ran "
                            "within the budget, so its own error is unknown")},
-          {"how", ensemble ? "the reference's ensemble standard error (relative; the "
-                             "event-driven hard disks have no discretisation knob)"
+          {"how", ensemble ? "the reference's ensemble standard error (relative; a "
+                             "particle ensemble has no discretisation knob)"
                            : "largest difference to its neighbours one step coarser in "
                              "each knob: an upper bound of its own error"}};
 }

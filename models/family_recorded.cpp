@@ -10,7 +10,7 @@ namespace {
 
 class RecordedFamily : public ParticleFamily {
  public:
-  RecordedFamily() : ParticleFamily("recorded", {"C7", "*"}) {}
+  RecordedFamily() : ParticleFamily("recorded", {"k", "*"}) {}
   std::optional<std::string> not_applicable(const AtlasScene& scene) const override {
     if (auto no = ParticleFamily::not_applicable(scene)) return no;
     if (scene.config->strings("md.recorded.files").empty()) {
