@@ -97,6 +97,16 @@ void write_transport_pair_results(const std::filesystem::path& file,
     h5::write_vector(s, "amplitude_error", m.fit.amplitude_error[k]);
     h5::write_vector(s, "residual_error", m.fit.residual_error[k]);
     h5::write_vector(s, "hydro_fitted", m.fit.fitted[k]);
+    // The hydro at every grid point, row i * (second factors) + j at (first[i], second[j]).
+    std::vector<double> flat;
+    for (const auto& row : m.hydro_and_members[k].hydro) {
+      for (const auto& h : row) flat.insert(flat.end(), h.begin(), h.end());
+    }
+    h5::write_matrix(s, "hydro_grid", flat, m.grid.factors_a.size() * m.grid.factors_b.size());
+    flat.clear();
+    for (const auto& a : m.hydro_and_members[k].members)
+      flat.insert(flat.end(), a.begin(), a.end());
+    h5::write_matrix(s, "member_amplitudes", flat, m.hydro_and_members[k].members.size());
   }
 }
 

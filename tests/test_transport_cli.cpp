@@ -183,6 +183,18 @@ TEST(TransportCli, SoundWaveMeasuresConductivityAndMuJointly) {
   H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
   const H5::Group g = h5.openGroup("/transport/conductivity_and_mu/n:cos");
   EXPECT_EQ(h5::read_doubles(g, "hydro_fitted").values.size(), 5u);
+  // The fit's data as written: the hydro at each of the 5 x 5 grid points and each member's
+  // amplitudes, whose mean is the written amplitude.
+  const auto grid = h5::read_doubles(g, "hydro_grid");
+  EXPECT_EQ(grid.shape, (std::vector<hsize_t>{25, 5}));
+  const auto members = h5::read_doubles(g, "member_amplitudes");
+  ASSERT_EQ(members.shape, (std::vector<hsize_t>{4, 5}));
+  const std::vector<double> amplitude = h5::read_doubles(g, "amplitude").values;
+  for (std::size_t k = 0; k < 5; ++k) {
+    double mean = 0.0;
+    for (std::size_t m = 0; m < 4; ++m) mean += members.values[m * 5 + k] / 4.0;
+    EXPECT_NEAR(mean, amplitude[k], 1e-12) << "snapshot " << k;
+  }
 
   const fs::path dilute = dir / "dilute";
   const CliStreams d = run_cli_streams(
