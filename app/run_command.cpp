@@ -94,7 +94,9 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
         const auto now = std::chrono::steady_clock::now();
         if (std::chrono::duration<double>(now - last).count() < progress_seconds) return;
         last = now;
-        const double f = std::clamp(p.t / p.t_end, 1e-9, 1.0);
+        // The share of this member's work done, by the work estimate's model (a clustering
+        // scene's collisions come late), at the member's measured wall time per share so far.
+        const double f = std::clamp(scene.estimate.member_share_done(p.t, p.t_end), 1e-9, 1.0);
         const md::EngineCost& cost = p.cost;  // its own unit: atom_steps, collisions
         // This member's rest, then the members after it, `jobs` at a time.
         const double later = double(scene.ensemble - member - 1) / std::max(1, scene.jobs);

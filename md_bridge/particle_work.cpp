@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "md_bridge/hard_disk_theory.hpp"
+#include "md_bridge/collision_forecast.hpp"
 
 namespace granvv::md {
 
@@ -27,9 +27,11 @@ ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q) {
       double(std::lround(required_setting(q.settings, "md.steps_per_contact", kWho)));
   const bool adaptive = required_setting(q.settings, "md.adaptive_stiffness", kWho) != 0.0;
   const bool haff = adaptive && cools(q.haff_time);
-  const double steps = haff ? q.haff_time / dt0 * std::log1p(q.t_end / q.haff_time) : q.t_end / dt0;
+  const double t0 = q.haff_time;
+  auto steps = [=](double t) { return haff ? t0 / dt0 * std::log1p(t / t0) : t / dt0; };
   ParticleWorkEstimate w;
-  w.work = n * q.ensemble * steps;
+  w.work = n * q.ensemble * steps(q.t_end);
+  w.member_work_until = [=](double t) { return n * steps(t); };
   w.limit = kMaxAtomSteps;
   w.unit = "atom-steps";
   w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.steps_per_contact", "md.max_overlap"};
@@ -45,12 +47,17 @@ ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q) {
 
 ParticleWorkEstimate event_driven_work(const ParticleWorkQuestion& q) {
   const double n = double(q.scene.particles);
-  const double nu0 = enskog_collision_frequency(q.scene.number_density(), q.scene.area_fraction,
-                                                q.hottest_temperature);
-  const double clock =
-      cools(q.haff_time) ? q.haff_time * std::log1p(q.t_end / q.haff_time) : q.t_end;
+  ClusteringInputs inputs;
+  inputs.scene = q.scene;
+  inputs.t_end = q.t_end;
+  inputs.initial_density = q.initial_density;
+  inputs.profile_collapse_time = q.profile_collapse_time;
+  inputs.contact_duration = required_setting(q.settings, "md.contact_duration", kWho);
+  const std::vector<DensityStage> stages = forecast_density_stages(inputs);
+  const Cooling cooling{q.hottest_temperature, cools(q.haff_time) ? q.haff_time : 0.0};
   ParticleWorkEstimate w;
-  w.work = q.ensemble * 0.5 * n * nu0 * clock;
+  w.member_work_until = [=](double t) { return forecast_collisions(n, stages, cooling, t); };
+  w.work = q.ensemble * w.member_work_until(q.t_end);
   w.limit = kMaxCollisions;
   w.unit = "collisions";
   w.keys = {"md.t_end", "md.ensemble", "md.particles", "md.area_fraction"};

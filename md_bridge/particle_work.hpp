@@ -2,6 +2,7 @@
 // The work of a particle run, estimated before anything runs, in each engine's own unit and
 // against the most that unit can do here (scene/md_scene.cpp refuses a run beyond it, naming the
 // key). The registry picks an engine's estimate by md.engine (particle_engine_registry.hpp).
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,6 +48,11 @@ struct ParticleWorkQuestion {
   // not cool.
   double haff_time = std::numeric_limits<double>::infinity();
   int ensemble = 1;
+  // The initial density profile n/n0 at equispaced points of the box (empty: uniform), and the
+  // MD time at which the flow by inertia of the initial velocity profile collapses (+inf: it
+  // does not; hydro/flow_by_inertia.hpp): where clusters will form.
+  std::vector<double> initial_density;
+  double profile_collapse_time = std::numeric_limits<double>::infinity();
 };
 
 struct ParticleWorkEstimate {
@@ -65,6 +71,9 @@ struct ParticleWorkEstimate {
   double rate = 0.0;
   bool divides_over_ranks = false;
   double bytes_fixed = 0.0, bytes_per_disk = 0.0;
+  // One member's work from t = 0 to MD time t by the same model (`work` is the ensemble's at
+  // md.t_end): the progress line's share of the work done.
+  std::function<double(double)> member_work_until;
 };
 
 // LAMMPS (docs/physics.md §5): the step is tc / md.steps_per_contact with tc ~ pi md.max_overlap
@@ -74,10 +83,11 @@ struct ParticleWorkEstimate {
 // t_end/t0). Work: particles x steps.
 ParticleWorkEstimate lammps_work(const ParticleWorkQuestion& q);
 
-// Event-driven (docs/physics.md §10): Enskog's collision frequency nu0 = 2 sqrt(pi) n0 chi(phi)
-// sqrt(T) at the hottest initial temperature, falling as sqrt(T) ~ 1/(1 + t/t0) with Haff's
-// law: collisions = (N/2) nu0 t0 ln(1 + t_end/t0) (N nu0 t_end / 2 without cooling). Clusters
-// collide faster than the mean density says; the limit leaves room for it.
+// Event-driven (docs/physics.md §10): Enskog's collision frequency at the hottest initial
+// temperature, falling as sqrt(T) ~ 1/(1 + t/t0) with Haff's law, summed over the densities the
+// scene will reach (md_bridge/collision_forecast.hpp): the initial profile, then, past the
+// clustering onset of the linear theory or of the initial flow, packings near close packing.
+// A homogeneous gas makes (N/2) nu0 t0 ln(1 + t_end/t0) (N nu0 t_end / 2 without cooling).
 ParticleWorkEstimate event_driven_work(const ParticleWorkQuestion& q);
 
 }  // namespace granvv::md

@@ -71,6 +71,9 @@ ParticleWorkEstimate RecordedEngine::work(const ParticleWorkQuestion& q) {
   w.unit = "members";
   w.keys = {"md.recorded.files"};
   w.rate = kRecordedMembersPerCoreSecond;
+  // A member's frames are read in time order.
+  const double t_end = q.t_end;
+  w.member_work_until = [t_end](double t) { return t_end > 0.0 ? std::min(t / t_end, 1.0) : 1.0; };
   return w;
 }
 

@@ -14,6 +14,7 @@
 #include "compare/signal_to_noise.hpp"
 #include "fields/constants.hpp"
 #include "fields/field_series.hpp"
+#include "hydro/flow_by_inertia.hpp"
 #include "md_bridge/box_modes.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
@@ -44,6 +45,30 @@ std::string scene_problem_key(const CaseConfig& c, const md::ParticleScene& sc) 
                     abbreviated(format_value(c.value(key)), 80) + ": " + why);
 }
 
+// Samples of the initial density profile for the work estimate: enough points to resolve the
+// profiles of the shipped scenes (a few modes across the box).
+constexpr int kWorkProfileSamples = 256;
+
+std::vector<double> profile_samples(const std::function<double(double)>& n) {
+  std::vector<double> samples;
+  if (!n) return samples;
+  for (int i = 0; i < kWorkProfileSamples; ++i) {
+    samples.push_back(n(-0.5 + (i + 0.5) / kWorkProfileSamples));
+  }
+  return samples;
+}
+
+// The flow by inertia's collapse time of the initial velocity profile (scaled; +inf without a
+// smooth profile or where it nowhere converges).
+double profile_collapse_time(const hydro::InitialFields& f) {
+  if (!f.v || !f.dv || !f.n) return std::numeric_limits<double>::infinity();
+  try {
+    return hydro::FlowByInertia(f.v, f.dv, f.n).singularity_time();
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::infinity();
+  }
+}
+
 // Work and output of the particle run. The work is the engine's own estimate, in its own unit
 // (md_bridge/particle_work.hpp: LAMMPS atom-steps from the contact, event-driven collisions from
 // Enskog's collision frequency); a sample interval below the engine's time step (LAMMPS only)
@@ -63,6 +88,8 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   question.t_end = spec.t_end;
   question.haff_time = t_haff;
   question.ensemble = s.ensemble;
+  question.initial_density = profile_samples(spec.fields.n);
+  question.profile_collapse_time = sc.md_time(profile_collapse_time(spec.fields));
   md::ParticleWorkEstimate work;
   try {
     work = md::estimate_particle_work(s.engine, question);
@@ -85,6 +112,7 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
       members_over_ranks ? work.work * members_here / std::max(1, s.ensemble) : work.work * share;
   e.unit = work.unit;
   e.rate = work.rate;
+  e.member_work_until = work.member_work_until;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
                      (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n * share : 0.0);
   e.machine_bytes = machine_memory_bytes();

@@ -49,6 +49,14 @@ std::string ParticleRunEstimate::describe() const {
          "/s per core";
 }
 
+double ParticleRunEstimate::member_share_done(double t, double t_end) const {
+  if (member_work_until) {
+    const double whole = member_work_until(t_end);
+    if (whole > 0.0 && std::isfinite(whole)) return member_work_until(t) / whole;
+  }
+  return t_end > 0.0 ? t / t_end : 1.0;
+}
+
 std::string key_to_blame(const CaseConfig& c, std::initializer_list<std::string> keys) {
   return key_to_blame(c, std::vector<std::string>(keys));
 }

@@ -2,6 +2,7 @@
 // The work a case asks for, estimated before anything runs (steps, cell-steps, atom-steps,
 // output size), and the limits beyond which a run cannot finish here and is refused with one
 // line naming the key, its value and the estimate.
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <vector>
@@ -35,6 +36,10 @@ struct ParticleRunEstimate {
   double rate = 0.0;           // unit per second on one core (measured)
   double bytes_per_rank = 0.0, machine_bytes = 0.0;
   double seconds() const { return work_per_rank / rate; }
+  // One member's work to MD time t (md_bridge/particle_work.hpp), and its share of the member's
+  // work to MD time t_end (t / t_end without a model).
+  std::function<double(double)> member_work_until;
+  double member_share_done(double t, double t_end) const;
   // "per rank (R ranks): W atom-steps, M GB of memory (this machine has X GB), about T wall at
   // the measured rate of ... per core"
   std::string describe() const;

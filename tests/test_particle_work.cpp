@@ -25,6 +25,7 @@ TEST(ParticleWork, EventDrivenEstimateCountsTheCollisionsOfACoolingGas) {
   const ParticleScene scene = scene_from_particles(4000, 0.05, 200.0, 0.9);
   ParticleWorkQuestion q;
   q.scene = scene;
+  q.settings["md.contact_duration"] = 0.0;
   q.t_end = 60.0;
   q.haff_time = haff_time_md(scene, enskog_chi(scene.area_fraction));
   q.ensemble = 1;
