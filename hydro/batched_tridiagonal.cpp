@@ -9,7 +9,7 @@ bool factorize_periodic(int n, const std::array<PeriodicTridiagonalView, K>& sys
                         const std::array<PeriodicLdlFactors*, K>& factors) {
   std::array<const double*, K> a, e;
   std::array<double*, K> r, l, q, s;
-  std::array<double, K> pivot, inverse, spike, last;
+  std::array<double, K> pivot, spike, last;
   bool positive = true;
   for (std::size_t k = 0; k < K; ++k) {
     PeriodicLdlFactors& f = *factors[k];
@@ -26,34 +26,57 @@ bool factorize_periodic(int n, const std::array<PeriodicTridiagonalView, K>& sys
     pivot[k] = a[k][0];
     positive &= pivot[k] > 0.0;
     const double corner = e[k][n - 1];
-    inverse[k] = 1.0 / pivot[k];
-    r[k][0] = inverse[k];
-    l[k][0] = e[k][0] * inverse[k];
-    spike[k] = corner * inverse[k];
+    r[k][0] = 1.0 / pivot[k];
+    l[k][0] = e[k][0] * r[k][0];
+    spike[k] = corner * r[k][0];
     s[k][0] = spike[k];
     last[k] = a[k][n - 1] - spike[k] * corner;
   }
+  // Row i's multiplier, pair product and spike, once 1/d_i is known (values kept in registers:
+  // the factor arrays are written, never read back).
+  std::array<double, K> multiplier;  // l_{i-1}
+  for (std::size_t k = 0; k < K; ++k) multiplier[k] = l[k][0];
+  const auto finish_row = [&](std::size_t k, int i, double inverse) {
+    r[k][i] = inverse;
+    const double li = e[k][i] * inverse;
+    l[k][i] = li;
+    q[k][i - 1] = multiplier[k] * li;
+    multiplier[k] = li;
+    const double fill = -spike[k] * e[k][i - 1];  // s_i d_i
+    spike[k] = fill * inverse;
+    s[k][i] = spike[k];
+    last[k] -= fill * spike[k];
+  };
   // The K chains d_{i-1} -> d_i are independent: one pass over the rows keeps them all in flight.
-  for (int i = 1; i + 2 < n; ++i) {
+  // Each chain takes two rows per division on it: with d_i d_{i-1} = A(i,i) d_{i-1} - e_{i-1}^2,
+  //   1/d_i = d_{i-1} / (A(i,i) d_{i-1} - e_{i-1}^2),  d_{i+1} = A(i+1,i+1) - e_i^2 / d_i,
+  // and 1/d_{i+1} is divided off the chain (a relative perturbation of A(i,i) and e_{i-1} per
+  // rounding, as in the row-by-row recurrence: backward stable alike).
+  int i = 1;
+  for (; i + 3 < n; i += 2) {
+#pragma GCC unroll 4
+    for (std::size_t k = 0; k < K; ++k) {
+      const double before = e[k][i - 1], coupling = e[k][i];
+      const double product = a[k][i] * pivot[k] - before * before;  // d_i d_{i-1}
+      const double inverse = pivot[k] / product;
+      pivot[k] = a[k][i + 1] - (coupling * coupling) * inverse;
+      positive &= (inverse > 0.0) & (pivot[k] > 0.0);
+      finish_row(k, i, inverse);
+      finish_row(k, i + 1, 1.0 / pivot[k]);
+    }
+  }
+  if (i + 2 < n) {  // one row left before n - 2
     for (std::size_t k = 0; k < K; ++k) {
       const double coupling = e[k][i - 1];
-      // d_i = A(i,i) - e_{i-1}^2 / d_{i-1}: one division and a multiply-subtract on the chain.
-      pivot[k] = a[k][i] - (coupling * coupling) * inverse[k];
+      pivot[k] = a[k][i] - (coupling * coupling) * r[k][i - 1];
       positive &= pivot[k] > 0.0;
-      inverse[k] = 1.0 / pivot[k];
-      r[k][i] = inverse[k];
-      l[k][i] = e[k][i] * inverse[k];
-      q[k][i - 1] = l[k][i - 1] * l[k][i];
-      const double fill = -spike[k] * coupling;  // s_i d_i
-      spike[k] = fill * inverse[k];
-      s[k][i] = spike[k];
-      last[k] -= fill * spike[k];
+      finish_row(k, i, 1.0 / pivot[k]);
     }
   }
   for (std::size_t k = 0; k < K; ++k) {
     const int i = n - 2;
     const double coupling = e[k][i - 1];
-    pivot[k] = a[k][i] - (coupling * coupling) * inverse[k];
+    pivot[k] = a[k][i] - (coupling * coupling) * r[k][i - 1];
     positive &= pivot[k] > 0.0;
     r[k][i] = 1.0 / pivot[k];
     const double fill = e[k][i] - spike[k] * coupling;  // s_{n-2} d_{n-2}

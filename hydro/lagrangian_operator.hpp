@@ -72,9 +72,6 @@ class LagrangianOperator {
   bool advance(const LagrangianState& from, const std::vector<double>& T_from,
                const FrozenCoefficients& c, double dt, PassFields& to);
 
-  // Largest relative change of a cell temperature in the last advance().
-  double last_relative_temperature_change() const { return last_dT_; }
-
  private:
   const Closure& closure_;
   int n_;
@@ -84,7 +81,6 @@ class LagrangianOperator {
   std::vector<double> v_mid_, vy_mid_, dv_mid_, work_;
   std::vector<double> inertia_;        // 2 mu_j / dt per node
   std::vector<double> inverse_width_;  // 1 / dx_i per cell
-  double last_dT_ = 0.0;
 };
 
 }  // namespace granvv::hydro

@@ -16,11 +16,6 @@ int index(Monitor m) {
   return static_cast<int>(m);
 }
 
-// |a - b| / ((a + b)/2): the jump of ln a across a node, to second order, without a logarithm.
-double relative_jump(double a, double b) {
-  return 2.0 * std::abs(a - b) / (a + b);
-}
-
 }  // namespace
 
 const std::array<MonitorDefinition, kMonitors>& monitor_definitions() {
@@ -53,14 +48,6 @@ bool monitor_applies(Monitor m, const ValidityScales& scales) {
   return m != Monitor::area_fraction || scales.area_fraction > 0.0;
 }
 
-double mean_free_path(double K, double n, double chi) {
-  return kMeanFreePathCoefficient * K / (n * chi);
-}
-
-double collision_time(double K, double n, double chi, double T) {
-  return 0.25 * K / (n * chi * std::sqrt(T));
-}
-
 ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
                                   const ValidityScales& scales) {
   const int N = s.cells();
@@ -70,38 +57,55 @@ ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& 
   auto chi_of = [&](double density) {
     return scales.contact_value ? enskog::chi(phi0 * density) : 1.0;
   };
-  // Largest value of each monitor and the cell (velocity, area fraction) or node (n, T) of it.
-  std::array<double, kMonitors> largest{};
-  std::array<int, kMonitors> where{};
-  auto keep = [&](Monitor m, double value, int at) {
-    if (value > largest[index(m)]) largest[index(m)] = value, where[index(m)] = at;
+  // Largest value of each monitor and the cell (velocity, area fraction) or node (n, T) of it,
+  // kept in locals of their own (registers) through the loop.
+  struct Largest {
+    double value = 0.0;
+    int at = 0;
+    void keep(double v, int i) {
+      if (v > value) value = v, at = i;
+    }
   };
-  // The previous cell's mean free path, starting from the periodic neighbour of cell 0.
-  double previous_l = mean_free_path(K, n[N - 1], chi_of(n[N - 1]));
-  for (int i = 0; i < N; ++i) {
-    const int before = i == 0 ? N - 1 : i - 1;
-    const int next_node = i + 1 < N ? i + 1 : 0;
-    const double chi = chi_of(n[i]);
-    const double l = mean_free_path(K, n[i], chi);
-    const double dvdx = std::abs(s.node_v[next_node] - s.node_v[i]) / w[i];
-    const double root_T = std::sqrt(s.cell_T[i]);
-    keep(Monitor::area_fraction, phi0 * n[i], i);
-    keep(Monitor::knudsen_velocity, l * dvdx / root_T, i);
-    keep(Monitor::collision_flow, collision_time(K, n[i], chi, s.cell_T[i]) * dvdx, i);
-    // Node i, between cells i - 1 and i.
-    const double l_node = 0.5 * (l + previous_l);
-    const double spacing = 0.5 * (w[i] + w[before]);
-    keep(Monitor::knudsen_density, l_node * relative_jump(n[i], n[before]) / spacing, i);
-    keep(Monitor::knudsen_temperature,
-         l_node * relative_jump(s.cell_T[i], s.cell_T[before]) / spacing, i);
+  Largest area, flow, density_jump, temperature_jump;
+  // Per cell, with the collision-rate factor 1/(n chi): l = (sqrt(2 pi)/8) K/(n chi), and
+  // l |dv/dx| / T^{1/2} = (sqrt(2 pi)/8) g, tau |dv/dx| = g/4 with g = K |dv| / (n chi w T^{1/2}),
+  // so the two velocity monitors share g and the cell where it is largest. Per node, between
+  // cells b and i: l_node |jump of ln n| / spacing = [2 (l_b + l_i) / (w_i + w_b)] |n_i - n_b| /
+  // (n_i + n_b), and the same with T (the bracket shared; each jump divided on its own, so that
+  // equal jumps give equal values and the first node of a tie is kept).
+  const auto rarefaction = [&](int i) { return 1.0 / (n[i] * chi_of(n[i])); };
+  double previous_l = kMeanFreePathCoefficient * K * rarefaction(N - 1);
+  const auto measure = [&](int i, int before, int next_node) {
+    const double inverse_collisions = rarefaction(i);
+    const double l = kMeanFreePathCoefficient * K * inverse_collisions;
+    const double dv = std::abs(s.node_v[next_node] - s.node_v[i]);
+    const double g = K * dv * inverse_collisions / (w[i] * std::sqrt(s.cell_T[i]));
+    area.keep(phi0 * n[i], i);
+    flow.keep(0.25 * g, i);
+    const double node_scale = 2.0 * (l + previous_l) / (w[i] + w[before]);
+    density_jump.keep(node_scale * (std::abs(n[i] - n[before]) / (n[i] + n[before])), i);
+    temperature_jump.keep(
+        node_scale * (std::abs(s.cell_T[i] - s.cell_T[before]) / (s.cell_T[i] + s.cell_T[before])),
+        i);
     previous_l = l;
-  }
+  };
+  measure(0, N - 1, 1);
+  for (int i = 1; i + 1 < N; ++i) measure(i, i - 1, i + 1);
+  measure(N - 1, N - 2, 0);
+  std::array<Largest, kMonitors> largest;
+  largest[index(Monitor::area_fraction)] = area;
+  largest[index(Monitor::knudsen_density)] = density_jump;
+  largest[index(Monitor::knudsen_temperature)] = temperature_jump;
+  largest[index(Monitor::collision_flow)] = flow;
+  // l |dv/dx| / T^{1/2} = (sqrt(2 pi)/8) g = sqrt(pi/2) tau |dv/dx|, at the same cell.
+  largest[index(Monitor::knudsen_velocity)] = {kMeanFreePathCoefficient * (4.0 * flow.value),
+                                               flow.at};
   ValidityMeasures out;
   for (const auto& d : monitor_definitions()) {
-    const int k = index(d.monitor), at = where[k];
+    const int k = index(d.monitor), at = largest[k].at;
     const bool at_node =
         d.monitor == Monitor::knudsen_density || d.monitor == Monitor::knudsen_temperature;
-    out[k].value = largest[k];
+    out[k].value = largest[k].value;
     out[k].x = wrap_position(at_node ? s.node_x[at] : cell_centre(s, at));
   }
   return out;

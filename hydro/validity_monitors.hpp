@@ -47,9 +47,6 @@ std::array<double, kMonitors> monitor_thresholds(const ValidityScales& scales);
 // Whether a monitor can be evaluated: the area fraction needs phi0.
 bool monitor_applies(Monitor m, const ValidityScales& scales);
 
-double mean_free_path(double K, double n, double chi);
-double collision_time(double K, double n, double chi, double T);
-
 struct MonitorValue {
   double value = 0.0;  // the largest over the mesh (0 where the monitor does not apply)
   double x = 0.0;      // where, wrapped into [-1/2, 1/2)

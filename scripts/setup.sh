@@ -28,6 +28,7 @@ packages=(
   libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libmuparser-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev # CMakeLists.txt finds them even when only granvv is built
   python3-numpy python3-matplotlib python3-h5py python3-jinja2 python3-pil
+  python3-scipy # bench/single_mode_reference.py: LAPACK through scipy
 )
 ((browser)) && packages+=(chromium chromium-driver)
 
