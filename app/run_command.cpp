@@ -35,6 +35,7 @@
 #include "scene/input_fingerprint.hpp"
 #include "scene/interruption.hpp"
 #include "scene/md_checkpoint.hpp"
+#include "scene/md_members.hpp"
 #include "scene/md_scene.hpp"
 
 namespace granvv::app {
@@ -108,6 +109,10 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
   model.run();
   const MdOutcome& out = model.outcome();
   if (out.threads > 1) log.info("md: members ran {} at a time in threads", out.threads);
+  if (out.member_groups > 1) {
+    log.info("md: members ran on {} groups of {} MPI rank(s), member m on group m mod {}",
+             out.member_groups, out.ranks_per_group, out.member_groups);
+  }
   log.info("md: restitution {:.6f} (target {:.6f}), {}", out.collision_rule.restitution,
            sc.restitution, out.collision_rule.description);
   log.info(
@@ -286,7 +291,10 @@ std::string resume_problem(const nlohmann::json& inputs, const fs::path& dir,
            " was made from other inputs (" + difference + "); run without --resume to start anew";
   }
   try {
-    resume_from = load_member_checkpoints(dir, md_scene.ensemble, ranks.rank, ranks.size);
+    // A member saved in blocks is read back by its group's ranks, each its own block.
+    const MemberGroups groups = member_groups(*make_engine(md_scene, ""), ranks.size);
+    resume_from = load_member_checkpoints(dir, md_scene.ensemble, groups.rank_in_group(ranks.rank),
+                                          groups.size);
   } catch (const std::exception& e) {
     return std::string("cannot resume: ") + e.what() + "; remove " +
            checkpoint_folder(dir).string() + " to start anew";

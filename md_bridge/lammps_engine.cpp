@@ -38,6 +38,9 @@ const EngineKeys& LammpsEngine::keys() {
        "time steps per contact duration"},
       {"adaptive_stiffness", true, hydro::ParameterRange::any(),
        "lower kn and raise dt as the gas cools, restitution fixed"},
+      {kRanksPerMemberKey, 0LL, hydro::ParameterRange::closed(0, 1e6),
+       "under mpirun: MPI ranks per ensemble member, members spread over the groups (a divisor "
+       "of the ranks); 0 = each member on every rank, one after another"},
   };
   return keys;
 }
@@ -79,6 +82,8 @@ std::unique_ptr<ParticleEngine> LammpsEngine::make(const ParticleEngineSetup& se
   o.steps_per_contact =
       static_cast<int>(std::lround(required_setting(setup.settings, "md.steps_per_contact", kWho)));
   o.adaptive_stiffness = required_setting(setup.settings, "md.adaptive_stiffness", kWho) != 0.0;
+  o.ranks_per_member = static_cast<int>(
+      std::lround(required_setting(setup.settings, std::string("md.") + kRanksPerMemberKey, kWho)));
   o.log_file = setup.log_dir.empty()
                    ? "none"
                    : (std::filesystem::path(setup.log_dir) / "log.lammps").string();
@@ -308,6 +313,24 @@ void LammpsEngine::between_segments() {
     ++changes_;
     ++all_changes_;
   }
+}
+
+void LammpsEngine::add_totals(const EngineState& other) {
+  LammpsEngine run(options_);
+  run.restore_state({{}, 1, 0, other.numbers});
+  if (runs_ == 1) {  // the first run's final contact, kept as set_up keeps it for a second run
+    first_final_ = contact_;
+    first_final_speed_ = speed_;
+  }
+  t_ = run.t_;
+  steps_ = run.steps_;
+  speed_ = run.speed_;
+  contact_ = run.contact_;
+  changes_ = run.changes_;
+  runs_ += run.runs_;
+  atom_steps_ += run.atom_steps_;
+  all_changes_ += run.all_changes_;
+  wall_before_ += run.wall_before_;
 }
 
 EngineValues LammpsEngine::series_values() const {

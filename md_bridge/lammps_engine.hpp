@@ -28,6 +28,7 @@ struct LammpsEngineOptions {
   int steps_per_contact = 0;        // md.steps_per_contact
   bool adaptive_stiffness = false;  // md.adaptive_stiffness
   double adapt_below = 0.5;         // re-stiffen when the fastest speed fell below this fraction
+  int ranks_per_member = 0;         // md.ranks_per_member (0: every rank, members in turn)
   std::string log_file = "none";    // LAMMPS -log of the runs (not of the calibration)
   MPI_Comm comm = MPI_COMM_WORLD;
 };
@@ -40,11 +41,12 @@ class LammpsEngine final : public ParticleEngine {
  public:
   // Throws std::invalid_argument (naming the md.* key) if no valid contact can be made.
   explicit LammpsEngine(LammpsEngineOptions options);
-  // From the registry: the scene and the case keys md.max_overlap, md.steps_per_contact and
-  // md.adaptive_stiffness (std::invalid_argument if one is missing); the log is
-  // log_dir/log.lammps.
+  // From the registry: the scene and the case keys md.max_overlap, md.steps_per_contact,
+  // md.adaptive_stiffness and md.ranks_per_member (std::invalid_argument if one is missing); the
+  // log is log_dir/log.lammps.
   static std::unique_ptr<ParticleEngine> make(const ParticleEngineSetup& setup);
-  // Its own case keys: md.max_overlap, md.steps_per_contact, md.adaptive_stiffness.
+  // Its own case keys: md.max_overlap, md.steps_per_contact, md.adaptive_stiffness,
+  // md.ranks_per_member.
   static const EngineKeys& keys();
   // The atlas's grid of the contact knobs (models/family_lammps.cpp).
   static const EngineKeys& atlas_keys();
@@ -84,6 +86,14 @@ class LammpsEngine final : public ParticleEngine {
   // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of
   // the first run).
   EngineDetails details() const override;
+
+  // Each member on a LAMMPS instance of its own, opened on its group's communicator in a
+  // process of its own (one instance per process: the instances of one process are not
+  // independent of each other).
+  int ranks_per_member() const override { return options_.ranks_per_member; }
+  // The later run's own state (its clock, steps, contact) and the totals summed; the first run's
+  // contacts stay this engine's.
+  void add_totals(const EngineState& other) override;
 
   // The validated contact model for relative normal speeds up to `relative_speed`.
   ContactModel contact_for_speed(double relative_speed) const;

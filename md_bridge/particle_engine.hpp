@@ -30,6 +30,10 @@ namespace granvv::md {
 // (particle_engine_registry.hpp), and a case that runs another engine may not set them.
 using EngineKeys = std::vector<hydro::ParameterSpec>;
 
+// The name of the engine key md.<name> whose value ranks_per_member() gives (ParticleEngine), for
+// the engine that declares it: the scene refuses a value that does not divide the run's ranks.
+inline constexpr const char* kRanksPerMemberKey = "ranks_per_member";
+
 // The case's settings for the engine by key ("md.max_overlap" -> 0.01; integers as reals,
 // booleans as 1 or 0): the [md] keys every scene has and the engine's own keys.
 using EngineSettings = std::map<std::string, double>;
@@ -214,7 +218,10 @@ class ParticleEngine {
   // to the next but its totals, and holds no process-wide state (the event-driven engine; not
   // LAMMPS, whose library instances are not independent of each other in one process).
   virtual bool independent_members() const { return false; }
-  // The ranks one member runs on under MPI (0: every rank of comm(), one member after another).
+  // The ranks one member runs on under MPI, for an engine that declares the key
+  // md.<kRanksPerMemberKey> (0: every rank of comm(), one member after another). Members then run
+  // apart as for independent_members(), each on a group of that many ranks
+  // (scene/md_members.hpp), one member at a time in each group.
   virtual int ranks_per_member() const { return 0; }
   // Adds the totals of the runs another engine of the same settings made (its save_state(false)),
   // as if they had been made here: the ensemble's totals when its members ran apart, added in

@@ -9,7 +9,8 @@
 //                      (md_bridge/md_run.hpp MdRunState), each file replaced whole by a rename;
 //                      it carries the SHA-256 of inputs.json, and is not read under another
 //   member_<m>.step<S>.rank<k>.h5  under MPI, rank k's block of the particles of member m's
-//                      state at step S (EngineState::particle_blocks > 1), written by rank k
+//                      state at step S (EngineState::particle_blocks > 1), written by rank k of
+//                      the ranks that run the member (scene/md_members.hpp: all, or its group)
 //   particles*.h5      the members' H5MD particle files while the particle part runs
 // Rank 0 alone writes the member files; every rank reads them, and its own block file.
 #include <mpi.h>

@@ -25,17 +25,30 @@ struct Abandoned : std::runtime_error {
 
 }  // namespace
 
-MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
+MemberGroups member_groups(const md::ParticleEngine& engine, int ranks) {
+  MemberGroups g;
+  const int per_member = engine.ranks_per_member();
+  g.apart = engine.independent_members() || per_member > 0;
+  g.size = engine.independent_members()                ? 1
+           : per_member > 0 && ranks % per_member == 0 ? per_member
+                                                       : ranks;
+  g.groups = ranks / g.size;
+  return g;
+}
+
+MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, const MemberGroups& groups,
+                               int jobs, const std::string& log_dir,
                                const std::function<void(int, const md::MdProgress&)>& progress,
                                const MdCheckpointing* checkpointing,
                                const std::function<double()>& particle_part_wall) {
   using clock = std::chrono::steady_clock;
   md::MpiEnvironment::ensure();
-  int rank = 0, ranks = 1;
+  int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
   const int members = scene.ensemble;
-  auto owner = [ranks](int m) { return m % ranks; };
+  const int group = groups.group_of(rank);
+  const bool group_leader = groups.rank_in_group(rank) == 0;
+  auto owner = [&groups](int m) { return groups.leader(m); };
   MembersApart out;
   out.records.resize(std::size_t(members));
   const bool saving = checkpointing && !checkpointing->out_dir.empty();
@@ -57,33 +70,37 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
       out.resumed_member = m;
       out.resumed_t = earlier->state.t;
     }
-    if (owner(m) == rank) to_run.push_back(m);
+    if (m % groups.groups == group) to_run.push_back(m);
   }
 
-  // MPI calls from several threads at once need MPI_THREAD_MULTIPLE and a communicator each.
+  // MPI calls from several threads at once need MPI_THREAD_MULTIPLE and a communicator each; a
+  // member over several ranks runs one at a time.
   out.threads = std::max(1, std::min<int>(jobs, int(to_run.size())));
-  if (md::MpiEnvironment::thread_level() < MPI_THREAD_MULTIPLE) out.threads = 1;
+  if (md::MpiEnvironment::thread_level() < MPI_THREAD_MULTIPLE || groups.size > 1) out.threads = 1;
+  MPI_Comm group_comm;
+  MPI_Comm_split(comm, group, rank, &group_comm);
   std::vector<MPI_Comm> comms(std::size_t(out.threads));
-  for (MPI_Comm& c : comms) MPI_Comm_dup(MPI_COMM_SELF, &c);
+  for (MPI_Comm& c : comms) MPI_Comm_dup(group_comm, &c);
+  MPI_Comm_free(&group_comm);
 
   std::mutex mutex;  // the progress callback, the checkpoint count
   std::atomic<std::size_t> next{0};
   std::atomic<bool> abandon{false};
   std::vector<std::exception_ptr> errors(to_run.size());
-  auto save = [&](int member, MemberCheckpoint c) {
+  auto save = [&](int member, MemberCheckpoint c, MPI_Comm member_comm) {
     c.particle_part_wall_seconds = particle_part_wall();
     try {
       const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
-      save_member_checkpoint(checkpointing->out_dir, member, c, MPI_COMM_SELF);
+      save_member_checkpoint(checkpointing->out_dir, member, c, member_comm);
       const std::lock_guard<std::mutex> count(mutex);
-      ++out.checkpoints_written;
+      if (group_leader) ++out.checkpoints_written;
     } catch (const std::exception& e) {
       const std::lock_guard<std::mutex> lock(mutex);
       if (checkpointing->warn) checkpointing->warn(e.what());
     }
   };
   auto run_member = [&](int m, MPI_Comm member_comm) {
-    const auto engine = make_engine(scene, "", member_comm);
+    const auto engine = make_engine(scene, log_dir, member_comm);
     md::MdRunSpec spec = scene.spec;
     spec.seed += static_cast<std::uint64_t>(m);
     spec.h5md_path = member_h5md_path(scene, m);
@@ -97,7 +114,7 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
                (checkpointing->stop_requested && checkpointing->stop_requested());
       };
       checkpoints.save = [&](const md::MdRunState& state) {
-        save(m, {false, state, 0.0});
+        save(m, {false, state, 0.0}, member_comm);
         last_save = clock::now();
       };
     }
@@ -116,7 +133,7 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
       md::MdRunState done;
       done.engine = record.totals;
       done.so_far = record.run;
-      save(m, {true, done, 0.0});
+      save(m, {true, done, 0.0}, member_comm);
     }
     out.records[std::size_t(m)] = std::move(record);
   };

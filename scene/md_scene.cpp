@@ -97,19 +97,27 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
     throw ConfigError(c.origin("md.engine") + ": md.engine = \"" + s.engine + "\": " + e.what());
   }
   const double dt0 = work.first_step;
-  // The work and memory of one rank: LAMMPS divides both over the ranks; an engine whose
-  // members are independent (scene/md_members.hpp) runs whole members, m = rank (mod P).
+  // The work and memory of one rank: its group's members (scene/md_members.hpp: m = group
+  // mod G), the engine's work divided over the group's ranks where it divides (LAMMPS).
   ParticleRunEstimate& e = s.estimate;
   e.ranks = launched_ranks();
-  const double share = work.divides_over_ranks ? 1.0 / e.ranks : 1.0;
-  bool members_over_ranks = false;
+  MemberGroups groups;
+  groups.size = e.ranks;
   try {
-    members_over_ranks = make_engine(s, "")->independent_members();
+    const auto engine = make_engine(s, "");
+    const int per_member = engine->ranks_per_member();
+    if (per_member > 0 && e.ranks % per_member != 0) {
+      refuse(c, std::string("md.") + md::kRanksPerMemberKey,
+             "must divide the " + std::to_string(e.ranks) + " MPI rank" +
+                 (e.ranks == 1 ? "" : "s") +
+                 " of this run (mpirun -np); 0 runs each member on every rank");
+    }
+    groups = member_groups(*engine, e.ranks);
   } catch (const std::invalid_argument&) {  // refused below, with its key
   }
-  const double members_here = std::ceil(double(s.ensemble) / e.ranks);
-  e.work_per_rank =
-      members_over_ranks ? work.work * members_here / std::max(1, s.ensemble) : work.work * share;
+  const double share = work.divides_over_ranks ? 1.0 / groups.size : 1.0;
+  const double members_here = std::ceil(double(s.ensemble) / groups.groups);
+  e.work_per_rank = work.work * share * members_here / std::max(1, s.ensemble);
   e.unit = work.unit;
   e.rate = work.rate;
   e.member_work_until = work.member_work_until;
@@ -461,14 +469,24 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
   auto since = [](clock::time_point t) {
     return std::chrono::duration<double>(clock::now() - t).count();
   };
-  if (engine.independent_members()) {
+  md::MpiEnvironment::ensure();
+  int ranks = 1;
+  MPI_Comm_size(engine.comm(), &ranks);
+  const MemberGroups groups = member_groups(engine, ranks);
+  out.member_groups = groups.groups;
+  out.ranks_per_group = groups.size;
+  if (groups.apart) {
     if (checkpointing) {
       for (const MemberCheckpoint& c : checkpointing->resume)
         if (!c.missing) wall_before = std::max(wall_before, c.particle_part_wall_seconds);
     }
-    MembersApart apart =
-        run_members_apart(scene, engine.comm(), scene.jobs, progress, checkpointing,
-                          [&] { return wall_before + since(start); });
+    // The members' engines log where this one would (its log file's folder).
+    const std::string log = engine.log_path();
+    const std::string log_dir =
+        log == "none" ? std::string() : std::filesystem::path(log).parent_path().string();
+    MembersApart apart = run_members_apart(
+        scene, engine.comm(), groups, engine.independent_members() ? scene.jobs : 1, log_dir,
+        progress, checkpointing, [&] { return wall_before + since(start); });
     // The ensemble's totals, member by member, as one engine running them in turn has them.
     for (std::size_t m = 0; m < apart.records.size(); ++m) {
       if (m == 0) {

@@ -406,6 +406,41 @@ class Mpi(FolderState):
                 with h5py.File(d / f"particles_m{m}.rank000{k}.h5", "r") as f:
                     self.assertEqual(f["particles/all/position/value"].shape, (31, 200, 2))
 
+    def test_lammps_members_on_one_rank_each_resume_on_their_ranks(self):
+        # md.ranks_per_member = 1 under two ranks: member m runs on rank m (a group of one), which
+        # writes its checkpoints whole (no blocks) and its frames; a resume continues each member
+        # on its rank from them.
+        mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
+        d = self.tmp / "groups"
+        args = MD_RESUMABLE + ["--set", "md.ranks_per_member=1"]
+        p = subprocess.Popen(mpirun + ["run"] + args + ["--out", str(d)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        c = d / ".granvv-checkpoint"
+        self.assertTrue(wait_for(lambda: all((c / f"member_{m}.h5").exists() for m in (0, 1)), 120))
+        p.terminate()
+        p.communicate(timeout=TIMEOUT)
+        self.assertFalse((d / "summary.json").exists())
+        for m in (0, 1):
+            with h5py.File(c / f"member_{m}.h5", "r") as f:
+                self.assertNotIn("particle_blocks", f["engine"].attrs)
+                if not f.attrs["finished"]:
+                    self.assertEqual(f["engine/x"].shape, (3 * 400,))
+        self.assertEqual(list(c.glob("member_*.rank*.h5")), [])
+        r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = self.assert_consistent(d, "ok")
+        self.assertTrue(s["md"]["checkpoints"]["resumed"])
+        self.assertIn("2 groups of 1 MPI rank", (d / "run.log").read_text())
+        for m in (0, 1):
+            with h5py.File(d / f"particles_m{m}.h5", "r") as f:
+                steps = f["particles/all/position/step"][()]
+                x = f["particles/all/position/value"]
+                self.assertFalse(x.is_virtual)  # one rank wrote all of it
+                self.assertEqual(x.shape, (31, 400, 2))  # t = 0, 1, ..., 30
+                self.assertTrue((steps[1:] > steps[:-1]).all())
+                self.assertTrue(np.isfinite(x[()]).all())
+
     @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
     def test_a_write_failure_on_rank_0_ends_every_rank(self):
         # Without a comparison the hydro runs first and results.h5 is written before the
