@@ -55,7 +55,7 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, int jobs,
     }
     if (earlier && out.resumed_member < 0) {
       out.resumed_member = m;
-      out.resumed_t = earlier->state.t;
+      out.resumed_t = md::resumed_time(earlier->state);
     }
     if (owner(m) == rank) to_run.push_back(m);
   }
