@@ -699,7 +699,8 @@ class InputFingerprints(FolderState):
         self.assertTrue(entries)
         edits = [lambda e: e.update(times=[]), lambda e: e.update(thermal="x"),
                  lambda e: e["fields"].update(bins=3) if e["fields"] else e.update(times=[7.0]),
-                 lambda e: e.update(inputs={"case": {}, "files": []})]
+                 lambda e: e.update(inputs={"case": {}, "files": []}),
+                 lambda e: e.update(format=[1]), lambda e: e.pop("inputs")]
         for entry, edit in zip(entries, edits):
             e = json.loads(entry.read_text())
             edit(e)
