@@ -41,6 +41,19 @@ bool all_ranks_ok(const Ranks& ranks, bool ok) {
   return all == 1;
 }
 
+std::string first_ranks_problem(const Ranks& ranks, const std::string& problem) {
+  if (ranks.size == 1) return problem;
+  int first = problem.empty() ? ranks.size : ranks.rank;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == ranks.size) return "";
+  std::string shared = problem;
+  int length = int(shared.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  shared.resize(std::size_t(length));
+  MPI_Bcast(shared.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  return first == 0 ? shared : shared + " (on rank " + std::to_string(first) + ")";
+}
+
 std::string writers_value(const Ranks& ranks, std::string value) {
   if (ranks.size == 1) return value;
   int length = int(value.size());

@@ -21,6 +21,11 @@ Ranks join_ranks(bool engine_needs_mpi);
 // True on every rank if ok is true on every rank (collective when size > 1).
 bool all_ranks_ok(const Ranks& ranks, bool ok);
 
+// The problem of the lowest rank that has one ("" if none has), on every rank (collective when
+// size > 1), naming that rank if it is not rank 0: what a check that each rank makes on its own
+// part (its block of a checkpoint) reports through the writer.
+std::string first_ranks_problem(const Ranks& ranks, const std::string& problem);
+
 // The writer's value on every rank (collective when size > 1): a path only rank 0 knows.
 std::string writers_value(const Ranks& ranks, std::string value);
 

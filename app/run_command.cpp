@@ -82,7 +82,7 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       if (saved.finished) {
         ++finished;
       } else {
-        running += fmt::format(", member {} at t = {:.6g}", m + 1, saved.state.t);
+        running += fmt::format(", member {} at t = {:.6g}", m + 1, md::resumed_time(saved.state));
       }
     }
     log.info("md: resuming from the checkpoints: {} finished member(s){}", finished, running);
@@ -295,6 +295,7 @@ std::string resume_problem(const nlohmann::json& inputs, const fs::path& dir,
     const MemberGroups groups = member_groups(*make_engine(md_scene, ""), ranks.size);
     resume_from = load_member_checkpoints(dir, md_scene.ensemble, groups.rank_in_group(ranks.rank),
                                           groups.size);
+    check_member_checkpoints(resume_from, md_scene.spec);
   } catch (const std::exception& e) {
     return std::string("cannot resume: ") + e.what() + "; remove " +
            checkpoint_folder(dir).string() + " to start anew";
@@ -610,11 +611,11 @@ int run_command(const RunOptions& options) {
   // What this run reads (its resolved case and the SHA-256 of its files): recorded in the
   // summary and the checkpoints, so that a result is reused or continued only for these inputs.
   const nlohmann::json inputs = input_fingerprint(config);
-  const std::string resume_problem =
-      options.resume && checkpointed && md_scene
-          ? app::resume_problem(inputs, dir, *md_scene, ranks, resume_from)
-          : std::string();
-  if (!all_ranks_ok(ranks, resume_problem.empty())) {
+  const std::string resume_problem = first_ranks_problem(
+      ranks, options.resume && checkpointed && md_scene
+                 ? app::resume_problem(inputs, dir, *md_scene, ranks, resume_from)
+                 : std::string());
+  if (!resume_problem.empty()) {
     if (writer) std::cerr << "granvv: error: " << resume_problem << "\n";
     return 2;
   }

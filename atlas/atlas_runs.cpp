@@ -171,7 +171,10 @@ std::string snapshot_problem(const json& s, double t, int bins) {
 // fields one snapshot per time on the scene's bins. An edited or damaged entry is run again.
 std::string entry_problem(const json& j, const AtlasScene& scene) {
   if (!j.is_object()) return "not a JSON object";
-  if (j.value("format", 0) != kCacheFormat) return "another cache format";
+  if (!j.contains("format") || !j["format"].is_number_integer() ||
+      j["format"].get<long long>() != kCacheFormat)
+    return "another cache format";
+  if (!j.contains("inputs")) return "no fingerprint of its inputs";
   for (const char* key : {"status", "reason", "work_unit"}) {
     if (!j.contains(key) || !j[key].is_string()) return std::string(key) + " is not a text";
   }
@@ -279,9 +282,13 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
       if (!changed.empty()) problem = "made from other inputs: " + changed;
     }
     if (problem.empty()) {
-      AtlasRun cached = run_from_json(j, setting);
-      family.judge(scene, cached);
-      return cached;
+      try {  // entry_problem checked every value read; a type it missed is a damaged entry
+        AtlasRun cached = run_from_json(j, setting);
+        family.judge(scene, cached);
+        return cached;
+      } catch (const json::exception& e) {
+        problem = std::string("a value of another type: ") + e.what();
+      }
     }
     run.cache_note = "the cache entry " + cache_file.string() + " is not used (" + problem +
                      "): the setting runs again";

@@ -149,6 +149,8 @@ std::vector<std::string> read_strings(const H5::Group& g, const std::string& nam
 
 std::string read_string_attribute(const H5::H5Object& o, const std::string& name) {
   const H5::Attribute a = o.openAttribute(name);
+  if (a.getTypeClass() != H5T_STRING || a.getSpace().getSimpleExtentNpoints() != 1)
+    throw std::runtime_error("attribute " + name + " is not one string");
   std::string value;
   a.read(a.getStrType(), value);
   return value;
@@ -156,7 +158,12 @@ std::string read_string_attribute(const H5::H5Object& o, const std::string& name
 
 double read_double_attribute(const H5::H5Object& o, const std::string& name) {
   double value = 0.0;
-  o.openAttribute(name).read(H5::PredType::NATIVE_DOUBLE, &value);
+  const H5::Attribute a = o.openAttribute(name);
+  const H5T_class_t type = a.getTypeClass();
+  // One value (the read would write as many as the attribute holds), of a number type.
+  if ((type != H5T_FLOAT && type != H5T_INTEGER) || a.getSpace().getSimpleExtentNpoints() != 1)
+    throw std::runtime_error("attribute " + name + " is not one number");
+  a.read(H5::PredType::NATIVE_DOUBLE, &value);
   return value;
 }
 

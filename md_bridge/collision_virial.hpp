@@ -33,6 +33,10 @@ class CollisionVirialTally {
   void finish(double interval);
   // The shares over the last finished interval, by particle ID.
   const LocalVirial& last() const { return last_; }
+  // The sums of the interval in progress (xx, yy per particle ID), for a checkpoint inside it;
+  // continue() takes them back (begin() first).
+  const std::vector<double>& sums() const { return sum_; }
+  void continue_from(std::vector<double> sums) { sum_ = std::move(sums); }
 
  private:
   std::vector<double> sum_;  // per particle ID: xx, yy

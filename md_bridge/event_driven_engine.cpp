@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -38,8 +39,8 @@ constexpr double kEventsPerBudgetedCollision = 100.0;
 // a window catches it after 10 N collisions however long the segment, where the segment's own
 // budget, md.max_collision_rate N (t - now), can be minutes of collisions.
 constexpr double kRateWindowCollisionsPerDisk = 10.0;
-// Events between two calls of the run's within-segment check (progress lines, signals): about
-// 0.1 s of a core at the engine's rate of about 5e5 events per second.
+// Events between two calls of the run's within-segment check (progress lines, signals,
+// checkpoints): about 0.1 s of a core at the engine's rate of about 5e5 events per second.
 constexpr long long kEventsPerCheck = 1 << 16;
 
 constexpr const char* kWho = "the event-driven engine";
@@ -185,6 +186,7 @@ void EventDrivenEngine::start(const std::vector<double>& x, const std::vector<do
   virial_sum_.assign(std::size_t(options_.virial_bins), 0.0);
   virial_ = CollisionVirial{t, t, 0.0, std::vector<double>(std::size_t(options_.virial_bins), 0.0)};
   collision_rate_ = 0.0;
+  segment_ = Segment{};
   synchronise();
 }
 
@@ -401,13 +403,16 @@ void EventDrivenEngine::cross(int i, int axis, double now) {
 
 double EventDrivenEngine::advance_to(double t) {
   if (disks_.empty()) throw std::logic_error("EventDrivenEngine::advance_to before set_up");
-  const double begin = t_;
-  segment_collisions_ = 0;
-  std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
-  tally_.begin(disks_.size());
+  if (!segment_.open) {  // else a segment restored from inside it goes on
+    segment_ = {true, t_, t_, t_, events_, 0};
+    segment_collisions_ = 0;
+    std::fill(virial_sum_.begin(), virial_sum_.end(), 0.0);
+    tally_.begin(disks_.size());
+  }
+  const double begin = segment_.begin;
   const double n = double(disks_.size());
   const double budget = options_.max_collision_rate * n * std::max(0.0, t - begin) + n;
-  const long long events_at_begin = events_;
+  const long long events_at_begin = segment_.events_at_begin;
   const auto runaway = [&](double now, double since, long long collisions) {
     std::ostringstream why;
     why << "event-driven engine: event-rate runaway at t = " << now << " (" << collisions
@@ -418,8 +423,8 @@ double EventDrivenEngine::advance_to(double t) {
     throw std::runtime_error(why.str());
   };
   const long long window = std::llround(std::ceil(kRateWindowCollisionsPerDisk * n));
-  double window_begin = begin;
-  long long window_collisions = 0;
+  double& window_begin = segment_.window_begin;
+  long long& window_collisions = segment_.window_collisions;
   while (calendar_.next_time() <= t) {
     if (double(events_ - ordered_at_) > kEventsPerReorder * n) order_by_cell(calendar_.next_time());
     const int i = calendar_.next();
@@ -431,7 +436,6 @@ double EventDrivenEngine::advance_to(double t) {
       continue;
     }
     ++events_, ++all_events_;
-    if ((events_ - events_at_begin) % kEventsPerCheck == 0) within_segment(now);
     if (axis == kCollision) {
       collide(i, s.partner, now);
       if (double(segment_collisions_) > budget) runaway(now, begin, segment_collisions_);
@@ -454,7 +458,14 @@ double EventDrivenEngine::advance_to(double t) {
         throw std::runtime_error(why.str());
       }
     }
+    // Between two events: every disk's flight, prediction and calendar entry are whole, so a
+    // checkpoint taken by the check continues from here with the same digits.
+    if ((events_ - events_at_begin) % kEventsPerCheck == 0) {
+      segment_.now = now;
+      within_segment(now);
+    }
   }
+  segment_.open = false;
   t_ = t;
   const double interval = t - begin;
   if (interval > 0.0) ++stops_;
@@ -575,25 +586,40 @@ double EventDrivenEngine::smallest_separation() const {
 
 EngineState EventDrivenEngine::save_state(bool with_particles) {
   EngineState state;
-  if (with_particles && !disks_.empty()) state.particles = gather_frame();
-  state.numbers = {{"t", t_},
-                   {"events", double(events_)},
-                   {"stops", double(stops_)},
-                   {"collisions", double(collisions_)},
-                   {"crossings", double(crossings_)},
-                   {"changed", double(changed_)},
-                   {"tc_elastic", double(tc_elastic_)},
-                   {"all_tc_elastic", double(all_tc_elastic_)},
-                   {"speed_elastic", double(speed_elastic_)},
-                   {"all_speed_elastic", double(all_speed_elastic_)},
-                   {"runs", double(runs_)},
-                   {"all_events", double(all_events_)},
-                   {"all_collisions", double(all_collisions_)},
-                   {"all_crossings", double(all_crossings_)},
-                   {"all_changed", double(all_changed_)},
-                   {"approach_sum", approach_sum_},
-                   {"recoil_sum", recoil_sum_},
-                   {"wall_seconds", cost().wall_seconds}};
+  if (with_particles && !disks_.empty()) {
+    state.particles = gather_frame();  // the disks at t, the last sample
+    state.arrays = whole_state();
+  }
+  if (with_particles && !disks_.empty() && segment_.open) {
+    state.numbers = {{"segment_time", segment_.now},
+                     {"segment_begin", segment_.begin},
+                     {"segment_window_begin", segment_.window_begin},
+                     {"segment_events_at_begin", double(segment_.events_at_begin)},
+                     {"segment_window_collisions", double(segment_.window_collisions)},
+                     {"segment_collisions", double(segment_collisions_)}};
+  }
+  if (with_particles && !disks_.empty()) {
+    state.numbers.push_back({"epoch", epoch_});
+    state.numbers.push_back({"ordered_at", double(ordered_at_)});
+  }
+  state.numbers.insert(state.numbers.end(), {{"t", t_},
+                                             {"events", double(events_)},
+                                             {"stops", double(stops_)},
+                                             {"collisions", double(collisions_)},
+                                             {"crossings", double(crossings_)},
+                                             {"changed", double(changed_)},
+                                             {"tc_elastic", double(tc_elastic_)},
+                                             {"all_tc_elastic", double(all_tc_elastic_)},
+                                             {"speed_elastic", double(speed_elastic_)},
+                                             {"all_speed_elastic", double(all_speed_elastic_)},
+                                             {"runs", double(runs_)},
+                                             {"all_events", double(all_events_)},
+                                             {"all_collisions", double(all_collisions_)},
+                                             {"all_crossings", double(all_crossings_)},
+                                             {"all_changed", double(all_changed_)},
+                                             {"approach_sum", approach_sum_},
+                                             {"recoil_sum", recoil_sum_},
+                                             {"wall_seconds", cost().wall_seconds}});
   return state;
 }
 
@@ -638,7 +664,12 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   disks_.clear();
   t_ = t;
   tally_.clear();
-  if (!p.x.empty()) start(p.x, p.v, t);
+  segment_ = Segment{};
+  if (!p.x.empty() && !state.arrays.empty()) {
+    restore_whole(state, number.count("segment_time") ? get("segment_time") : t);
+  } else if (!p.x.empty()) {  // a checkpoint of the particles alone: predictions made anew
+    start(p.x, p.v, t);
+  }
 }
 
 void EventDrivenEngine::add_totals(const EngineState& other) {

@@ -72,8 +72,13 @@ class EventDrivenEngine final : public ParticleEngine {
   // (event-rate runaway) if the segment needs more than md.max_collision_rate N (t - now) + N
   // collisions, or if any 10 N of its collisions take less than 10 / md.max_collision_rate of
   // time (the rule in event_driven_engine.cpp): inelastic collapse, which the collapse rule
-  // should have prevented. Calls the run's within-segment check every 65536 events.
+  // should have prevented. Calls the run's within-segment check every 65536 events, between
+  // two events. After a restore of a state saved there it continues that segment.
   double advance_to(double t) override;
+  // Its state is saved whole (every disk's flight, cell, prediction and calendar entry, and
+  // the segment's sums so far): a restored run goes on with the same digits, also from inside
+  // a segment.
+  bool saves_within_segment() const override { return true; }
   long long steps() const override { return events_; }  // events of this run
   // The events and the stops: a stop, which brings every disk to its time, is an event of the
   // run of its own, so that a segment without a collision or a cell crossing (a short sample
@@ -152,6 +157,10 @@ class EventDrivenEngine final : public ParticleEngine {
   void collide(int i, int j, double now);
   void cross(int i, int axis, double now);
   void synchronise();
+  // The whole event-driven state (save_state's arrays), and a restore from them; the restore
+  // throws std::invalid_argument for arrays of another size or out of range.
+  EngineArrays whole_state() const;
+  void restore_whole(const EngineState& state, double segment_time);
   // Renumbers the disks in the order of their cells (cells, calendar and partners follow), so
   // that the disks of neighbouring cells lie near each other in memory as the gas mixes; and
   // moves the epoch to now.
@@ -202,6 +211,14 @@ class EventDrivenEngine final : public ParticleEngine {
   CollisionVirial virial_;
   CollisionVirialTally tally_;  // the same per disk
   double collision_rate_ = 0.0;
+  // The segment advance_to is inside (open between its start and its end, also across a save
+  // and restore from within it): where it began, its events then, and the rate window's start.
+  struct Segment {
+    bool open = false;
+    double begin = 0.0, window_begin = 0.0, now = 0.0;
+    long long events_at_begin = 0, window_collisions = 0;
+  };
+  Segment segment_;
 };
 
 }  // namespace granvv::md

@@ -11,6 +11,7 @@
 #include "fields/field_series.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "md_bridge/box_modes.hpp"
+#include "md_bridge/every_rank.hpp"
 #include "md_bridge/h5md_frames.hpp"
 #include "md_bridge/moment_reduction.hpp"
 #include "md_bridge/mpi_environment.hpp"
@@ -29,6 +30,12 @@ struct CloseFramesLocked {
 };
 
 }  // namespace
+
+double resumed_time(const MdRunState& state) {
+  for (const auto& [name, value] : state.engine.numbers)
+    if (name == "segment_time") return value;
+  return state.t;
+}
 
 const std::vector<MdSeriesColumn>& md_series_columns() {
   static const std::vector<MdSeriesColumn> columns{
@@ -94,8 +101,12 @@ BoxSample sample_box(const CoarseGrainer& grainer, ParticleEngine& engine, doubl
   const bool virial = w.xx.size() == std::size_t(p.count) && w.yy.size() == w.xx.size() &&
                       !(p.count > 0 && w.xx.empty());
   Moments m(grainer.grid().bins);
-  grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
-                     virial ? w.yy.data() : nullptr);
+  // A non-finite particle on one rank (the coarse-grainer refuses it) stops every rank here,
+  // with that rank's reason, rather than leaving the others waiting in the sums below.
+  on_every_rank(engine.comm(), [&] {
+    grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
+                       virial ? w.yy.data() : nullptr);
+  });
   if (virial) m.virial_particles = m.particles;  // also a rank without particles
   allreduce(m, engine.comm());
   BoxModeSums modes = box_mode_sums(p.x, p.v, p.mass, p.count, lx, ly);
@@ -226,16 +237,21 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
     checkpoints.save(state);  // every rank: each may hold its own block of the particles
   };
 
-  // Inside a long segment the engine reports the time it has reached: the progress callback
-  // (the app's progress lines and its stop at a signal) is called there too.
+  // Inside a long segment the engine reports the time it has reached: the checkpoints (if the
+  // engine can save a state there) and the progress callback (the app's progress lines and its
+  // stop at a signal) are looked at there too, the checkpoint first, so that a signal inside a
+  // segment leaves a checkpoint of that moment.
   struct WithinSegment {
     ParticleEngine& engine;
     ~WithinSegment() { engine.set_within_segment({}); }
   } within{engine};
-  if (progress) {
+  const bool save_within = checkpoints.save && engine.saves_within_segment();
+  if (progress || save_within) {
     engine.set_within_segment([&](double now) {
-      progress({now, spec.t_end, result.series.T.empty() ? 0.0 : result.series.T.back(), wall(),
-                engine.steps(), engine.cost()});
+      if (save_within) checkpoint_if_due();
+      if (progress)
+        progress({now, spec.t_end, result.series.T.empty() ? 0.0 : result.series.T.back(), wall(),
+                  engine.steps(), engine.cost()});
     });
   }
   while (t < spec.t_end - 0.5 * engine.time_resolution()) {  // samples land on the nearest step

@@ -78,17 +78,23 @@ struct MdRunResult {
   fields::FieldSeries fields;
 };
 
-// Everything a run needs to continue from a safe point (just after a sample): the engine's
-// state, where the loop stood, and what the run has recorded so far (status "running").
+// Everything a run needs to continue from a safe point (just after a sample, or inside the
+// segment after it for an engine that saves_within_segment): the engine's state, where the
+// loop stood at the last sample, and what the run has recorded so far (status "running").
 struct MdRunState {
-  double t = 0.0;
+  double t = 0.0;               // the last sample's time
   std::size_t next_output = 0;  // index into MdRunSpec::output_times
   double next_frame = 0.0;      // time of the next H5MD particle frame
   EngineState engine;
   MdRunResult so_far;
 };
 
-// Checkpoints of a run (docs/outputs.md, "Checkpoints and resume"). After every sample rank 0
+// The time a saved state continues from: inside a segment, the time the engine had reached
+// there; else the last sample's.
+double resumed_time(const MdRunState& state);
+
+// Checkpoints of a run (docs/outputs.md, "Checkpoints and resume"). After every sample, and
+// inside a segment at the engine's within-segment checks if it saves_within_segment, rank 0
 // asks due(); if it says yes, every rank saves the state and hands it to save() (collective:
 // under MPI each rank's state may hold only its block of the particles, EngineState).
 struct MdCheckpoints {

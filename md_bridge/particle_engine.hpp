@@ -135,11 +135,15 @@ using EngineValues = std::vector<std::pair<std::string, double>>;
 // particles it holds the totals only: the state between two runs.
 // An engine that spreads its particles over P > 1 ranks saves on each rank only that rank's
 // block of IDs (particle_blocks.hpp: IDs first_row + 1 ..), so that no rank gathers them all.
+// An engine may add its own arrays by name (the event-driven one: its whole event-driven state,
+// so that a restored run continues with the same digits).
+using EngineArrays = std::vector<std::pair<std::string, std::vector<double>>>;
 struct EngineState {
   ParticleFrame particles;
   int particle_blocks = 1;  // P: the ranks the particles are split over (1: all of them here)
   long long first_row = 0;  // the row of particles' first entry in the whole (its ID - 1)
   EngineValues numbers;
+  EngineArrays arrays;
 };
 
 // One engine serves every member of an ensemble: set_up starts a new run.
@@ -177,6 +181,11 @@ class ParticleEngine {
   // abandoned and the engine must be set up or restored before it is used again).
   using WithinSegment = std::function<void(double t)>;
   void set_within_segment(WithinSegment check) { within_segment_ = std::move(check); }
+  // Whether save_state(true) may be called from the within-segment check, giving a state from
+  // which restore_state continues the segment where it stood (the run's checkpoints are then
+  // taken inside long segments too). Its numbers' "t" stays the segment's start (the last
+  // sample); "segment_time" is the time reached inside it.
+  virtual bool saves_within_segment() const { return false; }
   // The engine's own adjustments after a segment has been sampled (LAMMPS: a softer contact
   // as the gas cools).
   virtual void between_segments() {}

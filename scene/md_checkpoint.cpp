@@ -2,6 +2,7 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "fields/field_series.hpp"
 #include "fields/field_series_file.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "md_bridge/every_rank.hpp"
@@ -126,6 +128,15 @@ void write_state(const fs::path& file, const MemberCheckpoint& c, const std::str
   }
   h5::write_strings(engine, "names", names);
   h5::write_vector(engine, "values", values);
+  if (!s.engine.arrays.empty()) {  // the engine's own arrays, by name
+    H5::Group arrays = h5.createGroup("/engine/arrays");
+    std::vector<std::string> array_names;
+    for (const auto& [name, array] : s.engine.arrays) {
+      array_names.push_back(name);
+      h5::write_vector(arrays, name, array);
+    }
+    h5::write_strings(engine, "array_names", array_names);
+  }
   if (s.engine.particle_blocks > 1) {  // the particles are in the ranks' block files
     h5::write_attribute(engine, "particle_blocks", double(s.engine.particle_blocks));
     h5::write_vector(engine, "x", {});
@@ -135,6 +146,15 @@ void write_state(const fs::path& file, const MemberCheckpoint& c, const std::str
     h5::write_vector(engine, "v", s.engine.particles.v);
   }
   h5.close();
+}
+
+// A count stored as a double attribute: an integer in [0, 2^53].
+long long count_attribute(const H5::H5Object& o, const char* name) {
+  const double value = h5::read_double_attribute(o, name);
+  if (!(value >= 0.0 && value <= 9007199254740992.0 && value == std::floor(value)))
+    throw std::runtime_error(std::string("its ") + name + " is " + std::to_string(value) +
+                             ", not a count");
+  return static_cast<long long>(value);
 }
 
 MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int member, int rank,
@@ -151,12 +171,12 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
   c.finished = h5::read_double_attribute(root, "finished") != 0.0;
   c.particle_part_wall_seconds = h5::read_double_attribute(root, "particle_part_wall_seconds");
   s.t = h5::read_double_attribute(root, "t");
-  s.next_output = static_cast<std::size_t>(h5::read_double_attribute(root, "next_output"));
+  s.next_output = std::size_t(count_attribute(root, "next_output"));
   s.next_frame = h5::read_double_attribute(root, "next_frame");
   r.status = h5::read_string_attribute(root, "status");
   r.stop_reason = h5::read_string_attribute(root, "stop_reason");
   r.wall_seconds = h5::read_double_attribute(root, "wall_seconds");
-  r.steps = static_cast<long long>(h5::read_double_attribute(root, "steps"));
+  r.steps = count_attribute(root, "steps");
 
   const H5::Group series = h5.openGroup("/series");
   for (const auto& column : md::md_series_columns()) {
@@ -173,10 +193,16 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
   const std::vector<double> values = h5::read_doubles(engine, "values").values;
   if (names.size() != values.size()) throw std::runtime_error("engine numbers without names");
   for (std::size_t i = 0; i < names.size(); ++i) s.engine.numbers.push_back({names[i], values[i]});
+  if (engine.nameExists("array_names")) {
+    const H5::Group arrays = h5.openGroup("/engine/arrays");
+    for (const auto& name : h5::read_strings(engine, "array_names"))
+      s.engine.arrays.push_back({name, h5::read_doubles(arrays, name).values});
+  }
   s.engine.particles.x = h5::read_doubles(engine, "x").values;
   s.engine.particles.v = h5::read_doubles(engine, "v").values;
   if (engine.attrExists("particle_blocks")) {
-    const int blocks = int(h5::read_double_attribute(engine, "particle_blocks"));
+    const int blocks =
+        int(std::min<long long>(count_attribute(engine, "particle_blocks"), 1 << 30));
     if (blocks != ranks)
       throw std::runtime_error("its particles were saved in blocks by " + std::to_string(blocks) +
                                " MPI ranks, and this run has " + std::to_string(ranks) +
@@ -185,7 +211,7 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
     const fs::path own = block_file(out_dir, member, r.steps, rank);
     const H5::H5File block(own.string(), H5F_ACC_RDONLY);
     const H5::Group block_root = block.openGroup("/");
-    s.engine.first_row = std::llround(h5::read_double_attribute(block_root, "first_row"));
+    s.engine.first_row = count_attribute(block_root, "first_row");
     s.engine.particles.x = h5::read_doubles(block_root, "x").values;
     s.engine.particles.v = h5::read_doubles(block_root, "v").values;
   }
@@ -273,6 +299,95 @@ std::vector<MemberCheckpoint> load_member_checkpoints(const fs::path& out_dir, i
   }
   while (!loaded.empty() && loaded.back().missing) loaded.pop_back();
   return loaded;
+}
+
+namespace {
+
+// Why a saved run state cannot belong to a run of spec ("" if it can): its loop's place, its
+// series and snapshots, and its particles checked against the scene before a run uses them.
+std::string state_problem(const MemberCheckpoint& c, const md::MdRunSpec& spec) {
+  const md::MdRunState& s = c.state;
+  const md::MdRunResult& r = s.so_far;
+  const auto number = [](double v) { return std::to_string(v); };
+  if (!c.finished) {
+    if (!(s.t >= 0.0 && s.t <= spec.t_end)) return "t = " + number(s.t) + " outside the run";
+    if (!std::isfinite(s.next_frame)) return "next_frame = " + number(s.next_frame);
+    if (s.next_output > spec.output_times.size())
+      return "next_output = " + std::to_string(s.next_output) + " beyond md.output_times";
+    if (r.status != "running") return "an unfinished member with status '" + r.status + "'";
+  } else if (r.status != "ok" && r.status != "failed") {
+    return "a finished member with status '" + r.status + "'";
+  }
+  const std::size_t samples = r.series.t.size();
+  if (!c.finished && samples == 0) return "no samples";
+  for (const auto& column : md::md_series_columns()) {
+    if ((r.series.*column.values).size() != samples)
+      return std::string("series ") + column.name + " has " +
+             std::to_string((r.series.*column.values).size()) + " values for " +
+             std::to_string(samples) + " times";
+  }
+  for (const auto& [name, values] : r.series.engine) {
+    if (values.size() != samples) return "engine series " + name + " of another length";
+  }
+  // What a run always measures is finite (the pressure columns may be absent, NaN).
+  for (const auto* values : {&r.series.t, &r.series.T, &r.series.energy_thermal,
+                             &r.series.energy_kinetic_x, &r.series.energy_kinetic_y,
+                             &r.series.energy_total, &r.series.momentum_x, &r.series.momentum_y}) {
+    for (const double v : *values)
+      if (!std::isfinite(v)) return "a non-finite value (" + number(v) + ") in its series";
+  }
+  for (std::size_t k = 1; k < samples; ++k) {
+    if (!(r.series.t[k] > r.series.t[k - 1])) return "series times out of order";
+  }
+  const double lx = spec.scene.box_length;
+  const auto bins = std::size_t(spec.bins);
+  if (r.fields.bin_edges != fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins).bin_edges)
+    return "snapshots on other bins than md.bins = " + std::to_string(spec.bins);
+  if (!c.finished && r.fields.snapshots.size() != s.next_output)
+    return std::to_string(r.fields.snapshots.size()) +
+           " snapshots for next_output = " + std::to_string(s.next_output);
+  if (r.fields.snapshots.size() > spec.output_times.size()) return "more snapshots than outputs";
+  for (const auto& snap : r.fields.snapshots) {
+    for (const auto* column : {&snap.x, &snap.n, &snap.v_x, &snap.T}) {
+      if (column->size() != bins)
+        return "a snapshot column of " + std::to_string(column->size()) + " values for " +
+               std::to_string(bins) + " bins";
+      // NaN: a bin without particles (coarse_grainer.hpp); never infinite.
+      for (const double v : *column)
+        if (std::isinf(v)) return "an infinite value in a snapshot";
+    }
+    for (const double v : snap.x)
+      if (!std::isfinite(v)) return "a snapshot bin at x = " + number(v);
+  }
+  const md::ParticleFrame& p = s.engine.particles;
+  const std::size_t expected = 3 * std::size_t(spec.scene.particles);
+  if (!p.x.empty() || !p.v.empty()) {
+    if (s.engine.particle_blocks == 1 && (p.x.size() != expected || p.v.size() != expected))
+      return std::to_string(p.x.size() / 3) + " particles for a scene of " +
+             std::to_string(spec.scene.particles);
+    if (p.x.size() != p.v.size() || p.x.size() % 3 != 0) return "particle arrays of other sizes";
+    for (const auto* values : {&p.x, &p.v})
+      for (const double v : *values)
+        if (!std::isfinite(v)) return "a particle with a non-finite position or velocity";
+  } else if (!c.finished && s.engine.particle_blocks == 1) {
+    return "no particles";
+  }
+  for (const auto& [name, value] : s.engine.numbers)
+    if (!std::isfinite(value)) return "the engine's " + name + " = " + number(value);
+  return "";
+}
+
+}  // namespace
+
+void check_member_checkpoints(const std::vector<MemberCheckpoint>& checkpoints,
+                              const md::MdRunSpec& spec) {
+  for (std::size_t m = 0; m < checkpoints.size(); ++m) {
+    if (checkpoints[m].missing) continue;
+    const std::string problem = state_problem(checkpoints[m], spec);
+    if (!problem.empty())
+      throw std::runtime_error("the checkpoint of member " + std::to_string(m) + " holds " +
+                               problem);
+  }
 }
 
 void remove_checkpoints(const fs::path& out_dir) {

@@ -68,6 +68,13 @@ void save_member_checkpoint(const std::filesystem::path& out_dir, int member,
 std::vector<MemberCheckpoint> load_member_checkpoints(const std::filesystem::path& out_dir,
                                                       int members, int rank = 0, int ranks = 1);
 
+// Throws std::runtime_error naming the member and what is wrong if a loaded checkpoint cannot
+// belong to a run of spec: its place in the run, the lengths and finiteness of its series, its
+// snapshots' bins, its particles' count and finiteness, its engine's numbers. The engine checks
+// its own arrays when it restores them.
+void check_member_checkpoints(const std::vector<MemberCheckpoint>& checkpoints,
+                              const md::MdRunSpec& spec);
+
 // Removes the checkpoint folder (after a run whose results are complete); never throws.
 void remove_checkpoints(const std::filesystem::path& out_dir);
 

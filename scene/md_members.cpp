@@ -68,7 +68,7 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, const Member
     }
     if (earlier && out.resumed_member < 0) {
       out.resumed_member = m;
-      out.resumed_t = earlier->state.t;
+      out.resumed_t = md::resumed_time(earlier->state);
     }
     if (m % groups.groups == group) to_run.push_back(m);
   }

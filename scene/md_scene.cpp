@@ -221,7 +221,7 @@ void run_members_in_turn(const MdScene& scene, md::ParticleEngine& engine,
       if (earlier) {
         checkpoints.resume_from = &earlier->state;
         out.resumed_member = m;
-        out.resumed_t = earlier->state.t;
+        out.resumed_t = md::resumed_time(earlier->state);
       }
       out.runs.push_back(md::run_md(
           spec, engine,

@@ -23,7 +23,11 @@ Asserted for every input, with the real CLI:
 
 With --kind files (or both), the inputs are instead the files a scene reads: mutated CSV and
 HDF5 tables and snapshot files (scripts/fuzz_files.py), run as initial.type = "table" or
-"snapshot" with the same assertions.
+"snapshot" with the same assertions; and damaged checkpoints and atlas cache entries. A
+checkpoint is resumed (`granvv resume`): exit 2 with one line and no summary written, or a run
+whose summary.json and /hydro hold no NaN and whose particle series (t, T, energies, momenta)
+are finite. An atlas reads its damaged cache entry: it exits 0 (the entry's setting is run
+again) with an atlas.json that is strict JSON.
 
 Usage: fuzz_cases.py --granvv build/granvv [--count 2000] [--seed 1] [--real-fraction 0.1]
                      [--timeout 120] [--jobs 1] [--work DIR] [--kind cases|files|both]
@@ -167,14 +171,22 @@ def make_input(rng, scenes, keys_of, real_fraction):
     if rng.random() < 0.03:  # a non-UTF-8 value or a long one through argv
         key = rng.choice(["case.name", "case.description", "md.kernel", "initial.type"])
         sets.append(key.encode() + b"=" + rng.choice([b"a\xff\xfeb", b"x" * 5000, b"\xc0\xaf"]))
-    return scene, file_bytes, sets, real, {}
+    return scene, file_bytes, sets, real, {}, None
 
 
-def make_file_input(rng, base_snapshot, real_fraction):
-    """A mutated table or snapshot file as an input (the case file untouched)."""
+def make_file_input(rng, bases, real_fraction):
+    """A mutated table or snapshot file as an input (the case file untouched), or a damaged
+    checkpoint to resume, or a damaged atlas cache entry to read again (a command of its own)."""
     import fuzz_files
-    scene, files, sets = fuzz_files.make_file_input(rng, base_snapshot)
-    return scene, None, sets, rng.random() < real_fraction, files
+    kind = rng.random()
+    if kind < 0.25:
+        files, command = fuzz_files.make_checkpoint_input(rng, bases["checkpoint"])
+        return "resume", None, [], True, files, command
+    if kind < 0.3:
+        files, command = fuzz_files.make_atlas_input(rng, bases["atlas"])
+        return "atlas", None, [], True, files, command
+    scene, files, sets = fuzz_files.make_file_input(rng, bases["snapshot"])
+    return scene, None, sets, rng.random() < real_fraction, files, None
 
 
 def run(cmd, timeout, cwd, env):
@@ -230,13 +242,73 @@ def hydro_nan(path):
     return found[0] if found else None
 
 
+def md_nan(path):
+    """The first of the particle series that every run measures holding a NaN or inf."""
+    import h5py
+    import numpy as np
+    with h5py.File(path, "r") as f:
+        if "md/timeseries" not in f:
+            return None
+        for name in ("t", "T", "energy_total", "energy_thermal", "momentum_x", "momentum_y"):
+            if name in f["md/timeseries"] and not np.isfinite(f["md/timeseries"][name][()]).all():
+                return "md/timeseries/" + name
+    return None
+
+
+def check_command(args, kind, command, work, env):
+    """A damaged checkpoint resumed, or an atlas reading a damaged cache entry: (category,
+    problem or None)."""
+    code, stdout, stderr, hung = run([args.granvv] + command, args.timeout, work, env)
+    kind += ":"
+    if hung:
+        return kind + "hang", "no answer within %g s" % args.timeout
+    if code < 0:
+        return kind + "signal", "killed by signal %d: %s" % (-code, stderr[-300:])
+    if code not in (0, 1, 2):
+        return kind + "exit%d" % code, "exit code %d" % code
+    kind += "exit%d" % code
+    if command[0] == "atlas":  # a damaged entry is run again: the atlas completes
+        if code != 0:
+            return kind, "the atlas exited %d: %r" % (code, stderr[-300:])
+        try:
+            strict_json((work / "atlas" / "atlas.json").read_text())
+        except (OSError, ValueError) as e:
+            return kind, "atlas.json: %s" % e
+        return kind, None
+    out = work / command[1]
+    if code == 2:
+        lines = stderr.decode(errors="replace").splitlines()
+        if len(lines) != 1 or not lines[0].startswith("granvv: error: "):
+            return kind, "exit 2 without exactly one error line: %r" % stderr[:400]
+        if (out / "summary.json").exists():
+            return kind, "exit 2 but a summary.json was written"
+        return kind, None
+    if not (out / "summary.json").exists():
+        return kind, "no summary.json after exit %d" % code
+    try:
+        strict_json((out / "summary.json").read_text())
+    except ValueError as e:
+        return kind, "summary.json: %s" % e
+    if (out / "results.h5").exists():
+        nan = hydro_nan(out / "results.h5") or md_nan(out / "results.h5")
+        if nan:
+            return kind, "NaN or inf in results.h5 %s" % nan
+    return kind, None
+
+
 def check_one(index, args, item, env):
     """Runs one input; returns (category, problem or None, command text)."""
-    scene, file_bytes, sets, real, files = item
+    scene, file_bytes, sets, real, files, command = item
     work = Path(tempfile.mkdtemp(prefix="fuzz-%d-" % index, dir=args.work))
     try:
         for name, data in files.items():
+            (work / name).parent.mkdir(parents=True, exist_ok=True)
             (work / name).write_bytes(data)
+        if command:
+            kind, problem = check_command(args, scene, command, work, env)
+            text = "(in a folder with %s) %s" % (", ".join(sorted(files)), " ".join(
+                shlex.quote(c) for c in [args.granvv] + command))
+            return kind, problem, text
         case = scene
         if file_bytes is not None:
             case = str(work / (scene + ".toml"))
@@ -343,14 +415,16 @@ def main():
     rng = random.Random(args.seed)
     scenes = sorted(p.stem for p in (ROOT / "cases").glob("*.toml"))
     keys_of = {s: resolved_keys(args.granvv, s, env) for s in scenes}
-    base_snapshot = None
+    bases = None
     if args.kind != "cases":
         import fuzz_files
-        base_snapshot = fuzz_files.make_base_snapshot(args.granvv, args.work, env, run)
+        bases = {"snapshot": fuzz_files.make_base_snapshot(args.granvv, args.work, env, run),
+                 "checkpoint": fuzz_files.make_base_checkpoint(args.granvv, args.work, env),
+                 "atlas": fuzz_files.make_base_atlas(args.granvv, args.work, env, run)}
 
     def one():
         if args.kind == "files" or (args.kind == "both" and rng.random() < 0.5):
-            return make_file_input(rng, base_snapshot, args.real_fraction)
+            return make_file_input(rng, bases, args.real_fraction)
         return make_input(rng, scenes, keys_of, args.real_fraction)
     items = [one() for _ in range(args.count)]
     counts, failures = {}, []

@@ -1,5 +1,8 @@
 """Mutated input files for scripts/fuzz_cases.py: the CSV and HDF5 tables and the snapshot
-files (a previous run's results.h5) a scene reads with initial.type = "table" or "snapshot".
+files (a previous run's results.h5) a scene reads with initial.type = "table" or "snapshot",
+and the files granvv reads back from itself: a particle run's checkpoint (its member files,
+inputs.json and case.toml, resumed with `granvv resume`) and an atlas's cache entries
+(runs/*.json, read again by the same `granvv atlas`).
 
 Each mutation starts from a valid file and breaks one or two things a user's file can have
 wrong: shapes (missing, empty, short, 2D or scalar columns), dtypes (integers, float32,
@@ -148,49 +151,56 @@ def table_h5_bytes(rng, cols):
     return damaged(rng, h5_bytes(build)), group_name
 
 
-def snapshot_bytes(rng, base):
-    """A previous run's results.h5 (bytes `base`) with its /hydro/fields broken."""
+def edited_h5(rng, base, edit):
+    """The bytes of HDF5 file `base` after edit(h5py.File) (and maybe damaged())."""
     fd, path = tempfile.mkstemp(suffix=".h5")
     os.close(fd)
     try:
         with open(path, "wb") as f:
             f.write(base)
         with h5py.File(path, "a") as f:
-            g = f["hydro/fields"]
-            for _ in range(rng.choice([0, 1, 1, 2])):
-                name = rng.choice(["x", "n", "v_x", "v_y", "T", "t", "label", "n_stderr"])
-                if name not in g or g[name].size > 10**6:  # absent, or declared huge before
-                    continue
-                old = g[name][()]
-                del g[name]
-                kind = rng.randrange(8)
-                if kind == 0:
-                    continue  # missing
-                if name == "label" or old.dtype.kind in "OS":
-                    g[name] = np.array([b"x"] * rng.randrange(4))
-                    continue
-                a = np.array(old, dtype=float)
-                if kind == 1 and a.ndim == 2:
-                    a = a[:, : rng.randrange(a.shape[1] + 1)]
-                elif kind == 2 and a.size:
-                    a.flat[rng.randrange(a.size)] = rng.choice(VALUES)
-                elif kind == 3:
-                    a = a.reshape(-1)
-                elif kind == 4:
-                    g.create_dataset(name, shape=(2**20, 2**20), chunks=(64, 64), dtype="f8")
-                    continue
-                elif kind == 5:
-                    g[name] = np.array([b"s"] * max(a.shape[0] if a.ndim else 1, 1))
-                    continue
-                elif kind == 6:
-                    a = a * rng.choice([-1.0, 0.0, 1e300])
-                g[name] = a
-            if rng.random() < 0.05 and "geometry" in g.attrs:
-                del g.attrs["geometry"]
+            edit(f)
         with open(path, "rb") as f:
             return damaged(rng, f.read())
     finally:
         os.unlink(path)
+
+
+def snapshot_bytes(rng, base):
+    """A previous run's results.h5 (bytes `base`) with its /hydro/fields broken."""
+    def edit(f):
+        g = f["hydro/fields"]
+        for _ in range(rng.choice([0, 1, 1, 2])):
+            name = rng.choice(["x", "n", "v_x", "v_y", "T", "t", "label", "n_stderr"])
+            if name not in g or g[name].size > 10**6:  # absent, or declared huge before
+                continue
+            old = g[name][()]
+            del g[name]
+            kind = rng.randrange(8)
+            if kind == 0:
+                continue  # missing
+            if name == "label" or old.dtype.kind in "OS":
+                g[name] = np.array([b"x"] * rng.randrange(4))
+                continue
+            a = np.array(old, dtype=float)
+            if kind == 1 and a.ndim == 2:
+                a = a[:, : rng.randrange(a.shape[1] + 1)]
+            elif kind == 2 and a.size:
+                a.flat[rng.randrange(a.size)] = rng.choice(VALUES)
+            elif kind == 3:
+                a = a.reshape(-1)
+            elif kind == 4:
+                g.create_dataset(name, shape=(2**20, 2**20), chunks=(64, 64), dtype="f8")
+                continue
+            elif kind == 5:
+                g[name] = np.array([b"s"] * max(a.shape[0] if a.ndim else 1, 1))
+                continue
+            elif kind == 6:
+                a = a * rng.choice([-1.0, 0.0, 1e300])
+            g[name] = a
+        if rng.random() < 0.05 and "geometry" in g.attrs:
+            del g.attrs["geometry"]
+    return edited_h5(rng, base, edit)
 
 
 def make_base_snapshot(granvv, work, env, run):
@@ -231,3 +241,259 @@ def make_file_input(rng, base_snapshot):
     if rng.random() < 0.15:
         sets.append("hydro.transverse_velocity=true")
     return scene, files, sets
+
+
+# Checkpoints and atlas cache entries: the files granvv itself wrote and reads back, edited or
+# damaged as a user or a crash could leave them. A resume of a damaged checkpoint is refused
+# with one line (exit 2) or runs with finite results; an atlas whose cache entry is damaged runs
+# that setting again.
+
+CHECKPOINT_CASE = ["md_haff", "--set", "md.engine=event_driven", "--set", "md.particles=400",
+                   "--set", "md.box_width=80", "--set", "md.ensemble=2", "--set", "md.bins=8",
+                   "--set", "md.sample_interval=1.0", "--set", "md.t_end=400",
+                   "--set", "md.output_times=[0.0,2.0,400.0]", "--set", "md.snapshot_interval=0",
+                   "--set", "md.checkpoint_interval=1e-6", "--set", "compare.enabled=false",
+                   "--set", "hydro.cells=32", "--set", "convergence.cells=[]"]
+ATLAS_ARGS = ["haff", "--budget", "1", "--jobs", "1", "--quiet", "--no-report"]
+
+
+def make_base_checkpoint(granvv, work, env):
+    """The checkpoint folder of a particle run stopped while its second member runs: {relative
+    path: bytes} (member_0.h5 finished, member_1.h5 in progress, case.toml, inputs.json)."""
+    import signal
+    import subprocess
+    import time
+    out = os.path.join(work, "base-checkpoint")
+    folder = os.path.join(out, ".granvv-checkpoint")
+    p = subprocess.Popen([granvv, "run"] + CHECKPOINT_CASE + ["--quiet", "--no-report", "--out", out],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=work, env=env)
+    end = time.monotonic() + 120
+    while time.monotonic() < end and p.poll() is None:
+        if os.path.exists(os.path.join(folder, "member_1.h5")):
+            break
+        time.sleep(0.002)
+    p.send_signal(signal.SIGSTOP)  # its files are whole (each replaced by a rename)
+    try:
+        files = {}
+        for name in sorted(os.listdir(folder)):
+            if name.endswith(".partial"):  # a save in progress
+                continue
+            with open(os.path.join(folder, name), "rb") as f:
+                files[name] = f.read()
+    finally:
+        p.kill()
+        p.wait()
+    if "member_1.h5" not in files:
+        raise RuntimeError("the base checkpoint run ended before its second member saved")
+    return files
+
+
+def _decoded(names):
+    return [n.decode() if isinstance(n, bytes) else str(n) for n in names]
+
+
+def _mutate_dataset(rng, group, name):
+    """One dataset of group replaced by a broken one (values, shape, dtype, size), or removed."""
+    old = group[name][()]
+    del group[name]
+    kind = rng.randrange(9)
+    if kind == 0:
+        return  # missing
+    if getattr(old, "dtype", None) is not None and old.dtype.kind in "OSU":
+        group[name] = np.array([b"x"] * rng.randrange(4)) if rng.random() < 0.5 else np.arange(3.0)
+        return
+    a = np.array(old, dtype=float)
+    if kind == 1 and a.ndim >= 1:
+        a = a[..., : rng.randrange(a.shape[-1] + 1)] if a.ndim == 2 else a[: rng.randrange(a.size + 1)]
+    elif kind == 2 and a.size:
+        for _ in range(rng.randint(1, 3)):
+            a.flat[rng.randrange(a.size)] = rng.choice(VALUES + [-2.0, 1e9, 0.5, 3.0])
+    elif kind == 3:
+        a = np.concatenate([a.reshape(-1), a.reshape(-1)[:1]]) if a.size else np.zeros(1)
+    elif kind == 4:
+        group.create_dataset(name, shape=(2**40,), chunks=(1024,), dtype="f8")
+        return
+    elif kind == 5:
+        group[name] = a.astype(rng.choice(["f4", "i4", "u1", "i8"]))
+        return
+    elif kind == 6:
+        a = np.tile(a.reshape(-1), (2, 1))
+    elif kind == 7:
+        a = a * rng.choice([-1.0, 0.0, 1e300, 2.0])
+    group[name] = a
+
+
+def _mutate_attribute(rng, obj, name):
+    kind = rng.randrange(5)
+    if kind == 0:
+        del obj.attrs[name]
+    elif kind == 1:
+        obj.attrs[name] = rng.choice(VALUES + [-3.0, 2.5, 1e9, 2.0**63, 7.0])
+    elif kind == 2:
+        obj.attrs[name] = "text"
+    elif kind == 3:
+        obj.attrs[name] = np.arange(rng.randint(0, 5), dtype=float)
+    else:
+        obj.attrs[name] = np.int64(rng.choice([0, 1, 2, -1, 2**62]))
+
+
+def checkpoint_member_bytes(rng, base):
+    """A member file of the base checkpoint (bytes) with one to three things broken."""
+    def edit(f):
+        datasets = []
+        f.visititems(lambda n, o: datasets.append(n) if isinstance(o, h5py.Dataset) else None)
+        for _ in range(rng.choice([1, 1, 2, 3])):
+            where = rng.random()
+            if where < 0.3:
+                names = list(f.attrs)
+                if names:
+                    _mutate_attribute(rng, f, rng.choice(names))
+            elif where < 0.4 and "engine" in f:
+                # An engine number out of range or not finite, by name.
+                g = f["engine"]
+                names, values = _decoded(g["names"][()]), np.array(g["values"][()], dtype=float)
+                if names:
+                    values[rng.randrange(len(names))] = rng.choice(VALUES + [-1.0, 1e9, 0.5])
+                    del g["values"]
+                    g["values"] = values
+            elif where < 0.55 and "engine/arrays" in f:
+                g = f["engine/arrays"]
+                name = rng.choice(list(g))
+                if rng.random() < 0.5:
+                    a = np.array(g[name][()], dtype=float)
+                    if a.size:
+                        i = rng.randrange(a.size)
+                        a[i] = rng.choice([a[(i + 1) % a.size], -1.0, 1e9, float("nan"),
+                                           float("inf"), a[i] + 0.5, 2.0**32])
+                    del g[name]
+                    g[name] = a
+                else:
+                    _mutate_dataset(rng, g, name)
+            else:
+                live = [n for n in datasets if n in f and f[n].size <= 10**6]
+                if live:
+                    name = rng.choice(live)
+                    parent, _, leaf = name.rpartition("/")
+                    _mutate_dataset(rng, f[parent] if parent else f, leaf)
+    return edited_h5(rng, base, edit)
+
+
+def checkpoint_inputs_bytes(rng, base):
+    """inputs.json edited: a key's value, a file entry, a fingerprint, or not JSON at all."""
+    import json
+    kind = rng.random()
+    if kind < 0.15:
+        return damaged(rng, base) if rng.random() < 0.5 else base[: rng.randrange(len(base) + 1)]
+    j = json.loads(base)
+    if kind < 0.45 and isinstance(j.get("case"), dict) and j["case"]:
+        key = rng.choice(list(j["case"]))
+        j["case"][key] = rng.choice(["0.5", "nan", "", "[]", 7, None, "\"x\""])
+    elif kind < 0.6:
+        j["files"] = rng.choice([[{"path": "/nonexistent", "sha256": "0" * 64}], "x", None, [1]])
+    elif kind < 0.75:
+        j["case_sha256"] = rng.choice(["", "0" * 64, 5, None])
+    elif kind < 0.9 and isinstance(j, dict) and j:
+        del j[rng.choice(list(j))]
+    else:
+        j = rng.choice([[], "text", 1, None, {}])
+    return json.dumps(j).encode()
+
+
+def checkpoint_case_bytes(rng, base):
+    """case.toml edited: a value changed, a line removed, or its bytes damaged."""
+    text = base.decode()
+    lines = text.split("\n")
+    kind = rng.random()
+    if kind < 0.4:
+        i = rng.randrange(len(lines))
+        if "=" in lines[i]:
+            key = lines[i].split("=")[0]
+            lines[i] = key + "= " + rng.choice(["0.5", "nan", "1e300", '"x"', "[]", "-1", "true"])
+        return "\n".join(lines).encode()
+    if kind < 0.7:
+        del lines[rng.randrange(len(lines))]
+        return "\n".join(lines).encode()
+    return damaged(rng, base) if rng.random() < 0.7 else b"\xff\xfe" + base
+
+
+def make_checkpoint_input(rng, base_checkpoint):
+    """(files {relative path: bytes}, command) for a resume of a damaged checkpoint."""
+    files = {"out/.granvv-checkpoint/" + n: d for n, d in base_checkpoint.items()}
+    target = rng.random()
+    if target < 0.7:
+        member = rng.choice([n for n in base_checkpoint if n.startswith("member_")])
+        files["out/.granvv-checkpoint/" + member] = checkpoint_member_bytes(rng, base_checkpoint[member])
+    elif target < 0.85:
+        files["out/.granvv-checkpoint/inputs.json"] = checkpoint_inputs_bytes(
+            rng, base_checkpoint["inputs.json"])
+    else:
+        files["out/.granvv-checkpoint/case.toml"] = checkpoint_case_bytes(
+            rng, base_checkpoint["case.toml"])
+    if rng.random() < 0.05:  # a member's file gone
+        del files["out/.granvv-checkpoint/" + rng.choice(["member_0.h5", "member_1.h5"])]
+    return files, ["resume", "out", "--quiet", "--no-report"]
+
+
+def make_base_atlas(granvv, work, env, run):
+    """The cache entries of a small atlas: {relative path: bytes} of its runs/*.json."""
+    out = os.path.join(work, "base-atlas")
+    code, _, err, _ = run([granvv, "atlas"] + ATLAS_ARGS + ["--out", out], 600, work, env)
+    if code != 0:
+        raise RuntimeError("the base atlas failed: %r" % err[-300:])
+    runs = os.path.join(out, "runs")
+    files = {}
+    for name in sorted(os.listdir(runs)):
+        with open(os.path.join(runs, name), "rb") as f:
+            files["atlas/runs/" + name] = f.read()
+    if not files:
+        raise RuntimeError("the base atlas cached no runs")
+    return files
+
+
+def _edit_json(rng, value, depth=0):
+    """One value somewhere inside a JSON value replaced by a hostile one."""
+    hostile = [None, "", "x", [], {}, -1, 0, 1e308, -1e308, 2**63, 3.5, True, [1e308], [None],
+               ["a"], {"a": 1}]
+    if isinstance(value, dict) and value and depth < 4:
+        key = rng.choice(list(value))
+        if rng.random() < 0.15:
+            del value[key]
+        else:
+            value[key] = _edit_json(rng, value[key], depth + 1)
+        return value
+    if isinstance(value, list) and value and depth < 4:
+        i = rng.randrange(len(value))
+        kind = rng.random()
+        if kind < 0.2:
+            return value[:i]
+        if kind < 0.3:
+            return value + value[-1:]
+        value[i] = _edit_json(rng, value[i], depth + 1)
+        return value
+    return rng.choice(hostile)
+
+
+def atlas_entry_bytes(rng, base):
+    import json
+    kind = rng.random()
+    if kind < 0.15:
+        return damaged(rng, base) if rng.random() < 0.5 else base[: rng.randrange(len(base) + 1)]
+    j = json.loads(base)
+    if kind < 0.3:
+        j[rng.choice(["times", "thermal", "flow"])] = rng.choice([[], [0.0], [1e308], None, "x"])
+    elif kind < 0.4 and isinstance(j.get("inputs"), dict):
+        j["inputs"]["case_sha256"] = "0" * 64
+    elif kind < 0.45:
+        return json.dumps(j).replace("0.", "NaN", 1).encode()  # not JSON
+    else:
+        for _ in range(rng.choice([1, 1, 2, 3])):
+            j = _edit_json(rng, j)
+    return json.dumps(j).encode()
+
+
+def make_atlas_input(rng, base_atlas):
+    files = dict(base_atlas)
+    for _ in range(rng.choice([1, 1, 1, 2])):
+        name = rng.choice(list(base_atlas))
+        files[name] = atlas_entry_bytes(rng, files[name])
+    return files, ["atlas"] + ATLAS_ARGS + ["--out", "atlas"]

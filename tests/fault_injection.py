@@ -353,17 +353,24 @@ class Mpi(FolderState):
         self.assertNotEqual(r.returncode, 0)
         self.assertEqual(r.stderr.count("granvv: error: "), 1, r.stderr)
 
+    def stopped_under_mpirun(self, d):
+        """A two-member particle run into d under mpirun -np 2, stopped once member 1 has a
+        checkpoint; the mpirun command that ran it."""
+        mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
+        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE + ["--out", str(d)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.assertTrue(wait_for(lambda: (d / ".granvv-checkpoint" / "member_1.h5").exists(),
+                                 TIMEOUT))  # member 0 first: minutes on a loaded machine
+        p.terminate()  # mpirun passes SIGTERM on; under several ranks it ends them
+        p.communicate(timeout=TIMEOUT)
+        return mpirun
+
     def test_a_particle_run_stopped_under_mpirun_resumes_its_block_files(self):
         # Two ranks write their ID blocks of the H5MD frames to particles_mK.rank000k.h5, joined
         # by particles_mK.h5, and of their checkpoints to member_m.stepS.rankk.h5
         # (docs/outputs.md); a resume continues each rank's own files.
-        mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
         d = self.tmp / "stopped"
-        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE + ["--out", str(d)],
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        self.assertTrue(wait_for(lambda: (d / ".granvv-checkpoint" / "member_1.h5").exists(), 120))
-        p.terminate()  # mpirun passes SIGTERM on; under several ranks it ends them
-        p.communicate(timeout=TIMEOUT)
+        mpirun = self.stopped_under_mpirun(d)
         self.assertFalse((d / "summary.json").exists())
         # The checkpoint holds each rank's block of the particles in a file of its own, not all
         # of them in member_1.h5 (scene/md_checkpoint.hpp).
@@ -440,6 +447,29 @@ class Mpi(FolderState):
                 self.assertEqual(x.shape, (31, 400, 2))  # t = 0, 1, ..., 30
                 self.assertTrue((steps[1:] > steps[:-1]).all())
                 self.assertTrue(np.isfinite(x[()]).all())
+
+    def test_a_non_finite_particle_on_one_rank_stops_every_rank(self):
+        # Rank 1's block of a checkpoint saved by two ranks gets a NaN velocity: rank 1 alone
+        # sees it, and every rank must stop with its reason (exit 2, one line), none waiting.
+        d = self.tmp / "stopped"
+        mpirun = self.stopped_under_mpirun(d)
+        c = d / ".granvv-checkpoint"
+        with h5py.File(c / "member_1.h5", "r") as f:
+            step = int(f.attrs["steps"])
+        with h5py.File(c / f"member_1.step{step}.rank1.h5", "r+") as f:
+            v = f["v"][()]
+            v[3 * 17] = float("nan")
+            f["v"][...] = v
+        begin = time.monotonic()
+        r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertLess(time.monotonic() - begin, 60)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        lines = [l for l in r.stderr.splitlines() if l.startswith("granvv: error: ")]
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn("non-finite", lines[0])
+        self.assertIn("(on rank 1)", lines[0])
+        self.assertTrue((c / "member_1.h5").exists())  # the checkpoint stays
 
     @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
     def test_a_write_failure_on_rank_0_ends_every_rank(self):
@@ -704,7 +734,8 @@ class InputFingerprints(FolderState):
         self.assertTrue(entries)
         edits = [lambda e: e.update(times=[]), lambda e: e.update(thermal="x"),
                  lambda e: e["fields"].update(bins=3) if e["fields"] else e.update(times=[7.0]),
-                 lambda e: e.update(inputs={"case": {}, "files": []})]
+                 lambda e: e.update(inputs={"case": {}, "files": []}),
+                 lambda e: e.update(format=[1]), lambda e: e.pop("inputs")]
         for entry, edit in zip(entries, edits):
             e = json.loads(entry.read_text())
             edit(e)
@@ -828,6 +859,72 @@ class EventDrivenSegments(FolderState):
         self.assertEqual(p.returncode, 128 + signal.SIGINT, err)
         self.assertLess(time.monotonic() - stopped, 10.0)  # within one check of 65536 events
         self.assertEqual(summary(d / "interrupted-run")["status"], "interrupted")
+
+    def test_a_kill_inside_a_long_segment_resumes_with_the_same_digits(self):
+        # One segment of 12000 time units (about 8e6 collisions of 10^4 disks, several seconds)
+        # between the samples at t = 0 and 12000, checkpointed every 0.5 s of wall time: the
+        # checkpoints fall inside the segment. The engine saves its whole state (every disk's
+        # flight, cell, prediction and calendar entry, and the segment's sums so far), so the
+        # killed and resumed run must give the uninterrupted run's numbers bit for bit.
+        args = ["md_haff", "--set", "md.engine=event_driven", "--set", "md.ensemble=1",
+                "--set", "md.restitution=0.99", "--set", "md.area_fraction=0.3",
+                "--set", "md.t_end=12000", "--set", "md.sample_interval=12000",
+                "--set", "md.snapshot_interval=12000", "--set", "md.output_times=[0.0,12000.0]",
+                "--set", "md.checkpoint_interval=0.5", "--set", "compare.enabled=false",
+                "--quiet", "--no-report"]
+        whole = self.tmp / "whole"
+        r = run(args + ["--out", str(whole)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        d = self.tmp / "killed"
+        p = start(args + ["--out", str(d)])
+        member = d / ".granvv-checkpoint" / "member_0.h5"
+
+        def inside_the_segment():
+            try:
+                with h5py.File(member, "r") as f:
+                    numbers = dict(zip([n.decode() if isinstance(n, bytes) else n
+                                        for n in f["engine/names"][()]], f["engine/values"][()]))
+                    return f.attrs["t"] == 0.0 and numbers.get("segment_time", 0.0) > 0.0
+            except (OSError, KeyError):
+                return False
+        self.assertTrue(wait_for(inside_the_segment, 120), "no checkpoint inside the segment")
+        p.kill()
+        p.communicate(timeout=TIMEOUT)
+        self.assertFalse((d / "summary.json").exists())
+        r = subprocess.run([GRANVV, "resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = self.assert_consistent(d, "ok")
+        c = s["md"]["checkpoints"]
+        self.assertTrue(c["resumed"])
+        self.assertGreater(c["resumed_t"], 0.0)  # continued from inside the segment
+        self.assertLess(c["resumed_t"], 12000.0)
+        w = summary(whole)["md"]
+        self.assertEqual(s["md"]["steps"], w["steps"])
+        for key in ("haff_t0_measured", "events", "collisions"):
+            if key in w:
+                self.assertEqual(s["md"][key], w[key], key)
+
+        def datasets(path, group):
+            out = {}
+            with h5py.File(path, "r") as f:
+                f[group].visititems(lambda name, o: out.__setitem__(name, o[()])
+                                    if isinstance(o, h5py.Dataset) else None)
+            return out
+        a, b = datasets(whole / "results.h5", "md"), datasets(d / "results.h5", "md")
+        self.assertEqual(sorted(a), sorted(b))
+        compared = 0
+        for name in a:
+            if a[name].dtype.kind != "f" or "wall" in name:
+                continue
+            self.assertTrue(np.array_equal(a[name], b[name], equal_nan=True), name)
+            compared += 1
+        self.assertGreater(compared, 10)
+        with h5py.File(whole / "particles.h5", "r") as f, h5py.File(d / "particles.h5", "r") as g:
+            for q in ("position", "velocity"):
+                x, y = f[f"particles/all/{q}/value"][()], g[f"particles/all/{q}/value"][()]
+                self.assertEqual(x.shape, y.shape)
+                self.assertTrue(np.array_equal(x, y), q)  # the disks at t = 12000, every digit
 
 
 class MpiCommands(FolderState):

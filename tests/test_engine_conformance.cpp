@@ -59,12 +59,9 @@ EnginePromises promises_of(const std::string& engine) {
     p.resumed_energy = 1e-5;
   }
   if (engine == "event_driven") {
-    // docs/outputs.md: the restored engine predicts its events again from the saved
-    // positions, so its rounding differs from the uninterrupted engine's by 1e-16, which chaos
-    // amplifies by about the mean free path over sigma per collision: after the one collision
-    // per disk of the run's second half, still far below 1e-12 of the energy (measured:
-    // 2e-15; tests/test_event_driven_engine.cpp allows 1e-6 after ten).
-    p.resumed_energy = 1e-12;
+    // docs/outputs.md: the engine saves its whole state (every disk's flight, cell, prediction
+    // and calendar entry), so the restored engine goes on with the uninterrupted one's digits.
+    p.resumed_energy = 0.0;
   }
   return p;
 }
