@@ -154,7 +154,7 @@ std::string snapshot_problem(const json& s, double t, int bins) {
     return "a snapshot without its time";
   if (s["t"].get<double>() != t) return "a snapshot at another time than its times list";
   for (const auto& c : fields::field_columns()) {
-    for (const std::string name : {std::string(c.name), std::string(c.name) + "_stderr"}) {
+    for (const std::string& name : {std::string(c.name), std::string(c.name) + "_stderr"}) {
       if (!s.contains(name)) continue;
       if (!s[name].is_array() || s[name].size() != std::size_t(bins))
         return "the snapshot column " + name + " does not have one value per bin";

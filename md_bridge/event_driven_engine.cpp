@@ -674,7 +674,7 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
 
 void EventDrivenEngine::add_totals(const EngineState& other) {
   EventDrivenEngine run(options_);
-  run.restore_state({{}, 1, 0, other.numbers});
+  run.restore_state({{}, 1, 0, other.numbers, {}});
   // The later run's own counts, as after it on one engine; the totals summed.
   events_ = run.events_;
   stops_ = run.stops_;

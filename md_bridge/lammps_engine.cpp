@@ -317,7 +317,7 @@ void LammpsEngine::between_segments() {
 
 void LammpsEngine::add_totals(const EngineState& other) {
   LammpsEngine run(options_);
-  run.restore_state({{}, 1, 0, other.numbers});
+  run.restore_state({{}, 1, 0, other.numbers, {}});
   if (runs_ == 1) {  // the first run's final contact, kept as set_up keeps it for a second run
     first_final_ = contact_;
     first_final_speed_ = speed_;

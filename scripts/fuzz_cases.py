@@ -297,7 +297,23 @@ def check_command(args, kind, command, work, env):
 
 
 def check_one(index, args, item, env):
-    """Runs one input; returns (category, problem or None, command text)."""
+    """Runs one input; returns (category, problem or None, command text). With --keep-failures,
+    a failing input's files and its command are kept in that folder (input_<index>/), so that it
+    can be run again by hand."""
+    kind, problem, text = check_input(index, args, item, env)
+    if problem and args.keep_failures:
+        keep = Path(args.keep_failures) / ("input_%d" % index)
+        for name, data in item[4].items():
+            (keep / name).parent.mkdir(parents=True, exist_ok=True)
+            (keep / name).write_bytes(data)
+        if item[1] is not None:
+            (keep / (item[0] + ".toml")).write_bytes(item[1])
+        keep.mkdir(parents=True, exist_ok=True)
+        (keep / "command.txt").write_text("%s\n%s\n" % (text, problem))
+    return kind, problem, text
+
+
+def check_input(index, args, item, env):
     scene, file_bytes, sets, real, files, command = item
     work = Path(tempfile.mkdtemp(prefix="fuzz-%d-" % index, dir=args.work))
     try:
@@ -405,6 +421,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--work", default=None)
     ap.add_argument("--kind", choices=["cases", "files", "both"], default="cases")
+    ap.add_argument("--keep-failures", default=None,
+                    help="folder where each failing input's files and command are kept")
     args = ap.parse_args()
     args.granvv = os.path.abspath(args.granvv)
     env = dict(os.environ)

@@ -388,7 +388,9 @@ TEST_P(EveryEngine, TotalsOfMembersRunApartAddUpToThoseOfOneEngine) {
     EXPECT_EQ(d1[i].key, d2[i].key);
     const bool clock = d1[i].key.find("per_second") != std::string::npos ||
                        d1[i].key.find("seconds") != std::string::npos;
-    if (!clock) EXPECT_EQ(d1[i].value, d2[i].value) << d1[i].key;  // a rate differs by the clock
+    if (!clock) {  // a rate differs by the clock
+      EXPECT_EQ(d1[i].value, d2[i].value) << d1[i].key;
+    }
   }
 }
 

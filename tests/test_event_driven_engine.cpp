@@ -365,7 +365,9 @@ TEST(EventDrivenEngine, ARunContinuedFromInsideASegmentMatchesTheUninterruptedOn
     const auto& b = continued.series.*column.values;
     ASSERT_EQ(a.size(), b.size()) << column.name;
     for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!std::isnan(a[i])) EXPECT_EQ(b[i], a[i]) << column.name << " " << i;
+      if (!std::isnan(a[i])) {
+        EXPECT_EQ(b[i], a[i]) << column.name << " " << i;
+      }
     }
   }
   ASSERT_EQ(continued.series.engine.size(), uninterrupted.series.engine.size());
