@@ -339,6 +339,10 @@ std::string state_problem(const MemberCheckpoint& c, const md::MdRunSpec& spec) 
   for (std::size_t k = 1; k < samples; ++k) {
     if (!(r.series.t[k] > r.series.t[k - 1])) return "series times out of order";
   }
+  // A member is saved at a sample or inside the segment after it, never before its last sample
+  // (continuing from an earlier t would sample the same times twice).
+  if (!c.finished && s.t < r.series.t.back())
+    return "t = " + number(s.t) + " before its last sample at t = " + number(r.series.t.back());
   const double lx = spec.scene.box_length;
   const auto bins = std::size_t(spec.bins);
   if (r.fields.bin_edges != fields::FieldSeries::on_bins(-0.5 * lx, lx, spec.bins).bin_edges)

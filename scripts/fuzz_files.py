@@ -429,8 +429,9 @@ def make_checkpoint_input(rng, base_checkpoint):
     else:
         files["out/.granvv-checkpoint/case.toml"] = checkpoint_case_bytes(
             rng, base_checkpoint["case.toml"])
-    if rng.random() < 0.05:  # a member's file gone
-        del files["out/.granvv-checkpoint/" + rng.choice(["member_0.h5", "member_1.h5"])]
+    members = sorted(n for n in files if "/member_" in n)
+    if members and rng.random() < 0.05:  # a member's file gone (of those the base run left)
+        del files[rng.choice(members)]
     return files, ["resume", "out", "--quiet", "--no-report"]
 
 

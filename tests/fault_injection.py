@@ -674,6 +674,36 @@ class Resume(FolderState):
         self.assertGreater(s["md"]["checkpoints"]["resumed_t"], 0.0)
         self.assertEqual(self.members(d, "T").shape[0], 2)
 
+    def test_a_checkpoint_saved_before_its_own_last_sample_is_refused(self):
+        # A damaged checkpoint whose time lies before the member's last sample would sample those
+        # times again and write a NaN-padded series (found by the fuzzer): refused in one line.
+        d = self.tmp / "out"
+        c = d / ".granvv-checkpoint"
+
+        def unfinished_with_samples():
+            for m in (0, 1):
+                try:
+                    with h5py.File(c / f"member_{m}.h5", "r") as f:
+                        if not f.attrs["finished"] and len(f["series/t"]) >= 2:
+                            return m
+                except (OSError, KeyError):
+                    pass
+            return None
+        p = start(MD_RESUMABLE + ["--out", str(d)])
+        self.assertTrue(wait_for(lambda: unfinished_with_samples() is not None, 120))
+        p.send_signal(signal.SIGINT)
+        p.communicate(timeout=TIMEOUT)
+        m = unfinished_with_samples()
+        self.assertIsNotNone(m)
+        with h5py.File(c / f"member_{m}.h5", "r+") as f:
+            f.attrs["t"] = 0.5 * f["series/t"][-1]
+        r = self.resume(d)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assert_one_error_line(r.stderr)
+        self.assertIn(f"member {m} holds t = ", r.stderr)
+        self.assertIn("before its last sample", r.stderr)
+        self.assertTrue((c / f"member_{m}.h5").exists())  # the checkpoint stays
+
     def test_resume_without_a_checkpoint(self):
         r = self.resume(self.tmp / "nothing")
         self.assertEqual(r.returncode, 2)
