@@ -88,6 +88,28 @@ void write_particles(const fs::path& file, const md::EngineState& e) {
   h5.close();
 }
 
+// Named arrays (an engine's time series, its own state arrays): each array a dataset of
+// `values`, their names in order as the string list `names_key` of `holder`.
+using NamedArrays = std::vector<std::pair<std::string, std::vector<double>>>;
+
+void write_named_arrays(H5::Group& holder, const char* names_key, H5::Group& values,
+                        const NamedArrays& arrays) {
+  std::vector<std::string> names;
+  for (const auto& [name, array] : arrays) {
+    names.push_back(name);
+    h5::write_vector(values, name, array);
+  }
+  h5::write_strings(holder, names_key, names);
+}
+
+NamedArrays read_named_arrays(const H5::Group& holder, const char* names_key,
+                              const H5::Group& values) {
+  NamedArrays arrays;
+  for (const auto& name : h5::read_strings(holder, names_key))
+    arrays.push_back({name, h5::read_doubles(values, name).values});
+  return arrays;
+}
+
 void write_state(const fs::path& file, const MemberCheckpoint& c, const std::string& stamp) {
   const md::MdRunState& s = c.state;
   const md::MdRunResult& r = s.so_far;
@@ -109,12 +131,7 @@ void write_state(const fs::path& file, const MemberCheckpoint& c, const std::str
     h5::write_vector(series, column.name, r.series.*column.values);
   }
   H5::Group engine_series = h5.createGroup("/series/engine");
-  std::vector<std::string> engine_names;
-  for (const auto& [name, values] : r.series.engine) {
-    engine_names.push_back(name);
-    h5::write_vector(engine_series, name, values);
-  }
-  h5::write_strings(series, "engine_names", engine_names);
+  write_named_arrays(series, "engine_names", engine_series, r.series.engine);
 
   H5::Group fields = h5.createGroup("/fields");
   fields::write_field_series(fields, r.fields);
@@ -130,12 +147,7 @@ void write_state(const fs::path& file, const MemberCheckpoint& c, const std::str
   h5::write_vector(engine, "values", values);
   if (!s.engine.arrays.empty()) {  // the engine's own arrays, by name
     H5::Group arrays = h5.createGroup("/engine/arrays");
-    std::vector<std::string> array_names;
-    for (const auto& [name, array] : s.engine.arrays) {
-      array_names.push_back(name);
-      h5::write_vector(arrays, name, array);
-    }
-    h5::write_strings(engine, "array_names", array_names);
+    write_named_arrays(engine, "array_names", arrays, s.engine.arrays);
   }
   if (s.engine.particle_blocks > 1) {  // the particles are in the ranks' block files
     h5::write_attribute(engine, "particle_blocks", double(s.engine.particle_blocks));
@@ -182,10 +194,7 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
   for (const auto& column : md::md_series_columns()) {
     r.series.*column.values = h5::read_doubles(series, column.name).values;
   }
-  const H5::Group engine_series = h5.openGroup("/series/engine");
-  for (const auto& name : h5::read_strings(series, "engine_names")) {
-    r.series.engine.push_back({name, h5::read_doubles(engine_series, name).values});
-  }
+  r.series.engine = read_named_arrays(series, "engine_names", h5.openGroup("/series/engine"));
   r.fields = fields::read_field_series(h5.openGroup("/fields"));
 
   const H5::Group engine = h5.openGroup("/engine");
@@ -193,11 +202,8 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
   const std::vector<double> values = h5::read_doubles(engine, "values").values;
   if (names.size() != values.size()) throw std::runtime_error("engine numbers without names");
   for (std::size_t i = 0; i < names.size(); ++i) s.engine.numbers.push_back({names[i], values[i]});
-  if (engine.nameExists("array_names")) {
-    const H5::Group arrays = h5.openGroup("/engine/arrays");
-    for (const auto& name : h5::read_strings(engine, "array_names"))
-      s.engine.arrays.push_back({name, h5::read_doubles(arrays, name).values});
-  }
+  if (engine.nameExists("array_names"))
+    s.engine.arrays = read_named_arrays(engine, "array_names", h5.openGroup("/engine/arrays"));
   s.engine.particles.x = h5::read_doubles(engine, "x").values;
   s.engine.particles.v = h5::read_doubles(engine, "v").values;
   if (engine.attrExists("particle_blocks")) {
