@@ -245,12 +245,6 @@ AtlasRun run_from_json(const json& j, const AtlasSetting& setting) {
 
 }  // namespace
 
-std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& s) {
-  std::vector<std::string> sets = scene.sets;
-  for (auto& set : model_family(s.model).overrides(scene, s)) sets.push_back(std::move(set));
-  return sets;
-}
-
 AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
                            const fs::path& cache_dir) {
   const ModelFamily& family = model_family(setting.model);
@@ -258,8 +252,7 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
   run.setting = setting;
   std::optional<CaseConfig> config;
   try {
-    config = CaseConfig::from_string(scene.source.text, scene.source.origin,
-                                     setting_overrides(scene, setting));
+    config = setting_case(scene, setting);
   } catch (const ConfigError& e) {
     run.status = "refused";
     run.reason = e.what();

@@ -11,9 +11,6 @@
 
 namespace granvv::app {
 
-// The --set overrides that make `setting` from the case: the user's, then the family's.
-std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& setting);
-
 // Runs one setting, or takes it from cache_dir (the file named by the hash of its resolved
 // case). A setting the schema or the scene refuses comes back with status "refused"; a run a
 // signal stopped, with status "interrupted" (and is not cached). Particle runs call MPI: run

@@ -36,12 +36,6 @@ class EventDrivenFamily : public ParticleFamily {
     }
     return grid;
   }
-  // The work is the collisions: proportional to members times particles.
-  double estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                  const AtlasScene& scene) const override {
-    return ParticleFamily::estimate(s, pilot, scene) * s.knob(kParticleFactor) /
-           pilot.setting.knob(kParticleFactor);
-  }
   // The reference keeps the case's particle count: other counts are another scene's size.
   bool may_be_reference(const AtlasSetting& s) const override {
     return s.knob(kParticleFactor) == 1.0;

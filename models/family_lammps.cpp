@@ -4,7 +4,6 @@
 #include <cmath>
 #include <tuple>
 
-#include "models/particle_cost.hpp"
 #include "models/particle_family.hpp"
 #include "scene/case_config.hpp"
 
@@ -74,13 +73,6 @@ class LammpsFamily : public ParticleFamily {
   bool plan_first(const AtlasSetting& s, const AtlasScene& scene) const override {
     return same_contact(s, case_setting(scene));
   }
-  // In proportion to the steps (models/particle_cost.hpp).
-  double estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                  const AtlasScene& scene) const override {
-    return std::max(pilot.cost.wall_seconds, 1e-3) *
-           atlas::dem_work_ratio(contact_of(s), contact_of(pilot.setting), scene.md_t_end,
-                                 scene.md_t_haff);
-  }
   // Larger ensemble, then smaller overlap, more steps, fixed (stiffest) contact.
   bool finer(const AtlasSetting& a, const AtlasSetting& b) const override {
     auto order = [](const AtlasSetting& s) {
@@ -105,10 +97,6 @@ class LammpsFamily : public ParticleFamily {
     return a.knob(kMaxOverlapKnob) == b.knob(kMaxOverlapKnob) &&
            a.knob(kStepsPerContactKnob) == b.knob(kStepsPerContactKnob) &&
            a.knob(kAdaptiveStiffnessKnob) == b.knob(kAdaptiveStiffnessKnob);
-  }
-  static atlas::ContactKnobs contact_of(const AtlasSetting& s) {
-    return {int(std::lround(s.knob(kEnsembleKnob))), s.knob(kMaxOverlapKnob),
-            int(std::lround(s.knob(kStepsPerContactKnob))), s.knob(kAdaptiveStiffnessKnob) != 0.0};
   }
 };
 

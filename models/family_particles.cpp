@@ -125,9 +125,22 @@ std::vector<AtlasSetting> ParticleFamily::grid(const AtlasScene& scene) const {
 }
 
 double ParticleFamily::estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                                const AtlasScene&) const {
-  return std::max(pilot.cost.wall_seconds, 1e-3) * s.knob(kEnsembleKnob) /
-         std::max(1.0, pilot.setting.knob(kEnsembleKnob));
+                                const AtlasScene& scene) const {
+  const double work = estimated_work(scene, s);
+  const double pilot_work = estimated_work(scene, pilot.setting);
+  // A setting the scene refuses is refused at once, before it costs anything.
+  if (!(work > 0.0) || !(pilot_work > 0.0)) return 0.0;
+  return std::max(pilot.cost.wall_seconds, 1e-3) * work / pilot_work;
+}
+
+double ParticleFamily::estimated_work(const AtlasScene& scene, const AtlasSetting& s) {
+  try {
+    const CaseConfig config = setting_case(scene, s);
+    const std::optional<MdScene> md = md_scene_from(config, hydro_scene_from(config));
+    return md ? md->estimate.work_per_rank : 0.0;
+  } catch (const ConfigError&) {
+    return 0.0;
+  }
 }
 
 bool ParticleFamily::finer(const AtlasSetting& a, const AtlasSetting& b) const {

@@ -8,6 +8,7 @@
 #include "hydro/closure.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "models/families.hpp"
+#include "scene/case_config.hpp"
 #include "scene/case_schema.hpp"
 
 namespace granvv::app {
@@ -135,6 +136,17 @@ std::string describe(const AtlasSetting& setting) {
 
 nlohmann::json setting_json(const AtlasSetting& setting) {
   return model_family(setting.model).setting_json(setting);
+}
+
+std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& s) {
+  std::vector<std::string> sets = scene.sets;
+  for (auto& set : model_family(s.model).overrides(scene, s)) sets.push_back(std::move(set));
+  return sets;
+}
+
+CaseConfig setting_case(const AtlasScene& scene, const AtlasSetting& s) {
+  return CaseConfig::from_string(scene.source.text, scene.source.origin,
+                                 setting_overrides(scene, s));
 }
 
 }  // namespace granvv::app

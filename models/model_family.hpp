@@ -132,6 +132,11 @@ int ladder_rank(const std::string& name);
 // Every knob of every family once, in the ladder's order (the columns of atlas.h5).
 std::vector<KnobSpec> all_knobs();
 
+// The --set overrides that make `setting` from the case: the user's, then the family's.
+std::vector<std::string> setting_overrides(const AtlasScene& scene, const AtlasSetting& setting);
+// The setting's resolved case; ConfigError where the schema or the scene refuses it.
+CaseConfig setting_case(const AtlasScene& scene, const AtlasSetting& setting);
+
 // The family's description and JSON of a setting, by its model's name.
 std::string describe(const AtlasSetting& setting);
 nlohmann::json setting_json(const AtlasSetting& setting);

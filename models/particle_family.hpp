@@ -25,7 +25,8 @@ class ParticleFamily : public ModelFamily {
   AtlasSetting pilot(const AtlasScene& scene) const override;
   // The ensemble sizes of atlas.ensembles, else 1, 2, 4, ... 512.
   std::vector<AtlasSetting> grid(const AtlasScene& scene) const override;
-  // Proportional to the members.
+  // The pilot's wall time scaled by the engine's own work estimate of each setting's resolved
+  // case (md_bridge/particle_work.hpp): members, particles, and the contact's steps.
   double estimate(const AtlasSetting& s, const AtlasRun& pilot,
                   const AtlasScene& scene) const override;
   // The larger ensemble.
@@ -34,6 +35,9 @@ class ParticleFamily : public ModelFamily {
   void run(const AtlasScene& scene, const CaseConfig& config, AtlasRun& run) const override;
 
  protected:
+  // The work of one rank for the setting, in its engine's unit (scene/work_estimate.hpp); 0
+  // where the schema or the scene refuses the setting.
+  static double estimated_work(const AtlasScene& scene, const AtlasSetting& s);
   // The ensemble sizes of the grid.
   static std::vector<int> ensembles(const AtlasScene& scene);
   // What the run keeps of the engine's own details (md_bridge/particle_engine.hpp): nothing here.

@@ -16,7 +16,6 @@
 #include "atlas/stability_search.hpp"
 #include "atlas/work_precision.hpp"
 #include "hydro/inertia_crossing.hpp"
-#include "models/particle_cost.hpp"
 #include "support/cli_runner.hpp"
 
 namespace granvv::testing {
@@ -83,17 +82,6 @@ TEST(AtlasPieces, RelativeBiasAndItsError) {
   // Errors that are NaN count as 0; a reference of 0 has no relative bias.
   EXPECT_NEAR(atlas::relative_bias(2.0, std::nan(""), 4.0, 0.4).error, 2.0 * 0.4 / 16.0, 1e-15);
   EXPECT_TRUE(std::isnan(atlas::relative_bias(1.0, 0.1, 0.0, 0.1).value));
-}
-
-TEST(AtlasPieces, DemWorkRatioFollowsTheContactKnobs) {
-  const atlas::ContactKnobs pilot{1, 0.01, 30, false};
-  // Twice the members, twice the steps per contact, half the overlap: 8 times the work.
-  EXPECT_NEAR(atlas::dem_work_ratio({2, 0.005, 60, false}, pilot, 30.0, 90.0), 8.0, 1e-12);
-  // Adaptive stiffness: t0 ln(1 + t_end/t0) first steps instead of t_end.
-  EXPECT_NEAR(atlas::dem_work_ratio({1, 0.01, 30, true}, pilot, 30.0, 90.0),
-              90.0 * std::log1p(30.0 / 90.0) / 30.0, 1e-12);
-  // Without cooling (t0 infinite) adaptive stiffness changes nothing.
-  EXPECT_NEAR(atlas::dem_work_ratio({1, 0.01, 30, true}, pilot, 30.0, INFINITY), 1.0, 1e-12);
 }
 
 TEST(AtlasPieces, BoundarySearchBracketsAKnownThreshold) {

@@ -161,5 +161,36 @@ TEST(ModelFamilies, ParticleGridsFollowTheirKeys) {
   EXPECT_TRUE(soft.plan_first(soft.case_setting(scene), scene));
 }
 
+TEST(ModelFamilies, ParticleCostsFollowTheEnginesOwnWorkEstimate) {
+  // The pilot's wall time scaled by the engine's work model (md_bridge/particle_work.hpp).
+  const AtlasScene scene = scene_of("quickstart");
+  const ModelFamily& soft = app::model_family("particles/lammps");
+  app::AtlasRun pilot;
+  pilot.setting = soft.pilot(scene);
+  pilot.cost.wall_seconds = 2.0;
+  const double overlap = pilot.setting.knob("max_overlap");
+  const double steps = pilot.setting.knob("steps_per_contact");
+  // LAMMPS: atom-steps. Twice the members, half the overlap (half the contact time, so half the
+  // step) and twice the steps per contact: 2 x 2 x 2 = 8 times the pilot's work.
+  auto finer = soft.with_knob(pilot.setting, "ensemble", 2);
+  finer = soft.with_knob(finer, "max_overlap", overlap / 2);
+  finer = soft.with_knob(finer, "steps_per_contact", 2 * steps);
+  EXPECT_NEAR(soft.estimate(finer, pilot, scene), 8 * 2.0, 1e-9);
+  // Adaptive stiffness lengthens the step as the gas cools: fewer steps than a fixed contact.
+  const auto adaptive = soft.with_knob(pilot.setting, "adaptive_stiffness", 1);
+  const auto fixed = soft.with_knob(pilot.setting, "adaptive_stiffness", 0);
+  EXPECT_LT(soft.estimate(adaptive, pilot, scene), soft.estimate(fixed, pilot, scene));
+  // A contact the schema refuses is refused before it costs anything.
+  EXPECT_EQ(soft.estimate(soft.with_knob(pilot.setting, "max_overlap", 10.0), pilot, scene), 0.0);
+  // Event-driven: collisions, proportional to the members and, at the same density, the disks.
+  const ModelFamily& hard = app::model_family("particles/event_driven");
+  pilot.setting = hard.pilot(scene);
+  EXPECT_NEAR(hard.estimate(hard.with_knob(pilot.setting, "ensemble", 4), pilot, scene), 4 * 2.0,
+              1e-9);
+  // Half the disks in a box of half the length: within the rounding of the disk count.
+  EXPECT_NEAR(hard.estimate(hard.with_knob(pilot.setting, "particle_factor", 0.5), pilot, scene),
+              0.5 * 2.0, 0.01 * 2.0);
+}
+
 }  // namespace
 }  // namespace granvv::testing
