@@ -97,13 +97,12 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
         last = now;
         // The share of this member's work done, by the work estimate's model (a clustering
         // scene's collisions come late), at the member's measured wall time per share so far.
-        const double f = std::clamp(scene.estimate.member_share_done(p.t, p.t_end), 1e-9, 1.0);
+        const double f = scene.estimate.member_share_done(p.t, p.t_end);
         const md::EngineCost& cost = p.cost;  // its own unit: atom_steps, collisions
-        // This member's rest, then the members after it, `jobs` at a time.
-        const double later = double(scene.ensemble - member - 1) / std::max(1, scene.jobs);
-        log.info("md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} {}/s ETA {:.1f} s",
-                 member + 1, scene.ensemble, p.t, p.T, p.steps, cost.per_second(), cost.work_unit,
-                 p.wall_seconds * (1 - f) / f + p.wall_seconds * later / f);
+        log.info(
+            "md member {}/{} t={:<9.5g} T={:<10.5g} steps {} {:.3g} {}/s ETA {:.1f} s", member + 1,
+            scene.ensemble, p.t, p.T, p.steps, cost.per_second(), cost.work_unit,
+            scene.estimate.seconds_left(member, scene.ensemble, scene.jobs, f, p.wall_seconds));
       },
       &checkpointing);
   model.run();

@@ -121,6 +121,7 @@ void check_particle_work(const CaseConfig& c, MdScene& s, double t_haff) {
   e.unit = work.unit;
   e.rate = work.rate;
   e.member_work_until = work.member_work_until;
+  e.member_groups = groups.groups;
   e.bytes_per_rank = work.bytes_fixed + work.bytes_per_disk * n * share +
                      (spec.snapshot_interval > 0.0 ? md::kFrameBytesPerDisk * n * share : 0.0);
   e.machine_bytes = machine_memory_bytes();

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,6 +56,13 @@ double ParticleRunEstimate::member_share_done(double t, double t_end) const {
     if (whole > 0.0 && std::isfinite(whole)) return member_work_until(t) / whole;
   }
   return t_end > 0.0 ? t / t_end : 1.0;
+}
+
+double ParticleRunEstimate::seconds_left(int member, int ensemble, int jobs, double share_done,
+                                         double wall_seconds) const {
+  const double f = std::clamp(share_done, 1e-9, 1.0);
+  const int later = std::max(0, ensemble - 1 - member) / std::max(1, member_groups);
+  return wall_seconds * (1.0 - f) / f + wall_seconds / f * later / std::max(1, jobs);
 }
 
 std::string key_to_blame(const CaseConfig& c, std::initializer_list<std::string> keys) {

@@ -40,6 +40,14 @@ struct ParticleRunEstimate {
   // work to MD time t_end (t / t_end without a model).
   std::function<double(double)> member_work_until;
   double member_share_done(double t, double t_end) const;
+  // The groups of ranks the members are spread over (scene/md_members.hpp: member m runs on
+  // group m mod member_groups; 1: every member on every rank).
+  int member_groups = 1;
+  // The wall seconds left of this rank's members while `member` runs with `share_done` of its
+  // work done after `wall_seconds`: its rest at its pace so far, then the later members of its
+  // group at the same pace, `jobs` at a time.
+  double seconds_left(int member, int ensemble, int jobs, double share_done,
+                      double wall_seconds) const;
   // "per rank (R ranks): W atom-steps, M GB of memory (this machine has X GB), about T wall at
   // the measured rate of ... per core"
   std::string describe() const;

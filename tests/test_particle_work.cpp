@@ -10,6 +10,7 @@
 #include "md_bridge/mpi_environment.hpp"
 #include "md_bridge/particle_engine_registry.hpp"
 #include "md_bridge/particle_sampler.hpp"
+#include "scene/work_estimate.hpp"
 #include "support/cli_runner.hpp"
 #include "support/elastic_gas.hpp"
 
@@ -45,6 +46,22 @@ TEST(ParticleWork, EventDrivenEstimateCountsTheCollisionsOfACoolingGas) {
 // md_haff elastic with 10^5 disks to t = 2e4: LAMMPS needs ~5.5e13 atom-steps (refused, as
 // before), the event-driven engine ~7e8 collisions (accepted); to t = 1e9 it needs ~4e13
 // collisions, beyond its 3e10.
+// The progress line's time left: the running member's rest at its pace so far, then the later
+// members that run on the same group of ranks (member m on group m mod G), `jobs` at a time.
+TEST(ParticleWork, TimeLeftCountsOnlyTheMembersOfTheRanksOwnGroup) {
+  app::ParticleRunEstimate e;
+  // Member 0 of 8, half done after 10 s: 10 s for its rest, then 7 members of 20 s each.
+  EXPECT_DOUBLE_EQ(e.seconds_left(0, 8, 1, 0.5, 10.0), 10.0 + 7 * 20.0);
+  // Two threads: the 7 later members two at a time.
+  EXPECT_DOUBLE_EQ(e.seconds_left(0, 8, 2, 0.5, 10.0), 10.0 + 3.5 * 20.0);
+  // Two groups of ranks: this rank runs members 0, 2, 4, 6 (3 after member 0); member 5 on
+  // group 1 has member 7 after it; the last member of a group has none.
+  e.member_groups = 2;
+  EXPECT_DOUBLE_EQ(e.seconds_left(0, 8, 1, 0.5, 10.0), 10.0 + 3 * 20.0);
+  EXPECT_DOUBLE_EQ(e.seconds_left(5, 8, 1, 0.5, 10.0), 10.0 + 1 * 20.0);
+  EXPECT_DOUBLE_EQ(e.seconds_left(6, 8, 1, 1.0, 10.0), 0.0);
+}
+
 TEST(ParticleWorkCli, EachEngineIsBudgetedInItsOwnUnit) {
   const std::string scene =
       "run md_haff --dry-run --set md.restitution=1 --set md.time_unit=md "
