@@ -101,7 +101,8 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
   // The validity monitors, measured on every accepted state (hydro/validity_monitors.hpp).
   const ValidityScales scales = closure.validity_scales();
   result.validity = ValidityRecord(scales);
-  ValidityMeasures validity = measure_validity(s, cells, scales);
+  ValidityWorkspace validity_work;
+  ValidityMeasures validity = measure_validity(s, cells, scales, validity_work);
   result.validity.note(validity, s.t);
   double cooled = 0.0;
   auto record = [&](double step, const Diagnostics& now) {
@@ -186,7 +187,7 @@ RunResult run_hydro(const Closure& closure, LagrangianState s, const RunControl&
 
     const Diagnostics prev = d;
     d = diagnose(s, cells);
-    validity = measure_validity(s, cells, scales);
+    validity = measure_validity(s, cells, scales, validity_work);
     result.validity.note(validity, s.t);
     drift(d);
     note_crossings(control.crossing_densities, s.t - dt, prev.n_max, s.t, d.n_max,

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "hydro/largest_value.hpp"
+
 namespace granvv::hydro {
 
 namespace {
@@ -22,13 +24,12 @@ double energy_removed(const std::vector<double>& cell_mass, const std::vector<do
   return (partial[0] + partial[1]) + (partial[2] + partial[3]);
 }
 
-// Largest |T'_i / T_i - 1|.
-double largest_relative_change(const std::vector<double>& T, const std::vector<double>& changed) {
-  double largest = 0.0;
-  for (size_t i = 0; i < T.size(); ++i) {
-    largest = std::max(largest, std::abs(changed[i] / T[i] - 1.0));
-  }
-  return largest;
+// Largest |T'_i / T_i - 1|, the per-cell changes stored first (a loop that vectorises).
+double largest_relative_change(const std::vector<double>& T, const std::vector<double>& changed,
+                               std::vector<double>& change) {
+  change.resize(T.size());
+  for (size_t i = 0; i < T.size(); ++i) change[i] = std::abs(changed[i] / T[i] - 1.0);
+  return largest_value(change);
 }
 
 }  // namespace
@@ -57,7 +58,7 @@ StepOutcome HydroIntegrator::step(LagrangianState& s, double dt, CellGeometry& c
   }
   op_.freeze(s.cell_mass, widths_mid_, T_mid_, dt, op_.last_velocity_differences(), coefficients_);
   if (!op_.advance(s, T_start_, coefficients_, dt, corrected_)) return out;
-  out.relative_heating = largest_relative_change(T_start_, corrected_.cell_T);
+  out.relative_heating = largest_relative_change(T_start_, corrected_.cell_T, relative_change_);
 
   // C(dt/2) at the end state's densities, measured once for this and every later pass.
   cell_widths(corrected_.node_x, end_cells_.width);

@@ -34,6 +34,7 @@ class HydroIntegrator {
   FrozenCoefficients coefficients_;
   CellGeometry cells_, end_cells_;
   std::vector<double> T_start_, T_end_, widths_mid_, T_mid_;
+  std::vector<double> relative_change_;  // |T'_i / T_i - 1| of the corrector, per cell
 };
 
 }  // namespace granvv::hydro

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hydro/enskog_factors.hpp"
+#include "hydro/largest_value.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -14,6 +15,21 @@ constexpr double kMeanFreePathCoefficient = 0.31332853432887503;  // sqrt(2 pi) 
 
 int index(Monitor m) {
   return static_cast<int>(m);
+}
+
+// The largest of values (0 if none is positive) and the first index holding it (as a running
+// "keep if greater" scan finds it); NaN is never the largest.
+struct Largest {
+  double value = 0.0;
+  int at = 0;
+};
+Largest largest_of(const std::vector<double>& values) {
+  const double largest = largest_value(values);
+  Largest out{largest, 0};
+  if (largest > 0.0) {
+    while (values[out.at] != largest) ++out.at;
+  }
+  return out;
 }
 
 }  // namespace
@@ -49,57 +65,64 @@ bool monitor_applies(Monitor m, const ValidityScales& scales) {
 }
 
 ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
-                                  const ValidityScales& scales) {
+                                  const ValidityScales& scales, ValidityWorkspace& work) {
   const int N = s.cells();
   const double K = scales.K, phi0 = scales.area_fraction;
   const auto& w = cells.width;
   const auto& n = cells.density;
-  auto chi_of = [&](double density) {
-    return scales.contact_value ? enskog::chi(phi0 * density) : 1.0;
-  };
-  // Largest value of each monitor and the cell (velocity, area fraction) or node (n, T) of it,
-  // kept in locals of their own (registers) through the loop.
-  struct Largest {
-    double value = 0.0;
-    int at = 0;
-    void keep(double v, int i) {
-      if (v > value) value = v, at = i;
-    }
-  };
-  Largest area, flow, density_jump, temperature_jump;
+  const auto& T = s.cell_T;
+  const auto& v = s.node_v;
   // Per cell, with the collision-rate factor 1/(n chi): l = (sqrt(2 pi)/8) K/(n chi), and
   // l |dv/dx| / T^{1/2} = (sqrt(2 pi)/8) g, tau |dv/dx| = g/4 with g = K |dv| / (n chi w T^{1/2}),
   // so the two velocity monitors share g and the cell where it is largest. Per node, between
   // cells b and i: l_node |jump of ln n| / spacing = [2 (l_b + l_i) / (w_i + w_b)] |n_i - n_b| /
   // (n_i + n_b), and the same with T (the bracket shared; each jump divided on its own, so that
-  // equal jumps give equal values and the first node of a tie is kept).
-  const auto rarefaction = [&](int i) { return 1.0 / (n[i] * chi_of(n[i])); };
-  double previous_l = kMeanFreePathCoefficient * K * rarefaction(N - 1);
+  // equal jumps give equal values and the first node of a tie is kept). The per-cell values are
+  // stored and their largest found afterwards, so that the loops with the divisions vectorise.
+  auto& inverse_collisions = work.inverse_collisions;
+  inverse_collisions.resize(N);
+  if (scales.contact_value) {
+    for (int i = 0; i < N; ++i) inverse_collisions[i] = 1.0 / (n[i] * enskog::chi(phi0 * n[i]));
+  } else {
+    for (int i = 0; i < N; ++i) inverse_collisions[i] = 1.0 / n[i];
+  }
+  work.flow.resize(N);
+  work.density_jump.resize(N);
+  work.temperature_jump.resize(N);
+  double* flow = work.flow.data();
+  double* density_jump = work.density_jump.data();
+  double* temperature_jump = work.temperature_jump.data();
+  const double* inverse = inverse_collisions.data();
+  const double path = kMeanFreePathCoefficient * K;
   const auto measure = [&](int i, int before, int next_node) {
-    const double inverse_collisions = rarefaction(i);
-    const double l = kMeanFreePathCoefficient * K * inverse_collisions;
-    const double dv = std::abs(s.node_v[next_node] - s.node_v[i]);
-    const double g = K * dv * inverse_collisions / (w[i] * std::sqrt(s.cell_T[i]));
-    area.keep(phi0 * n[i], i);
-    flow.keep(0.25 * g, i);
-    const double node_scale = 2.0 * (l + previous_l) / (w[i] + w[before]);
-    density_jump.keep(node_scale * (std::abs(n[i] - n[before]) / (n[i] + n[before])), i);
-    temperature_jump.keep(
-        node_scale * (std::abs(s.cell_T[i] - s.cell_T[before]) / (s.cell_T[i] + s.cell_T[before])),
-        i);
-    previous_l = l;
+    const double dv = std::abs(v[next_node] - v[i]);
+    const double g = K * dv * inverse[i] / (w[i] * std::sqrt(T[i]));
+    flow[i] = 0.25 * g;
+    const double node_scale =
+        2.0 * (path * inverse[i] + path * inverse[before]) / (w[i] + w[before]);
+    density_jump[i] = node_scale * (std::abs(n[i] - n[before]) / (n[i] + n[before]));
+    temperature_jump[i] = node_scale * (std::abs(T[i] - T[before]) / (T[i] + T[before]));
   };
   measure(0, N - 1, 1);
+#pragma GCC ivdep  // distinct arrays
   for (int i = 1; i + 1 < N; ++i) measure(i, i - 1, i + 1);
   measure(N - 1, N - 2, 0);
   std::array<Largest, kMonitors> largest;
+  Largest area;
+  if (phi0 != 0.0) {
+    // phi0 n_i is largest where n_i is (phi0 > 0; phi0 = 0 leaves the monitor at 0); the first
+    // cell holding the rounded product phi0 n_max, as a scan of phi0 n_i would find it.
+    area.value = phi0 * largest_of(n).value;
+    while (area.value > 0.0 && phi0 * n[area.at] != area.value) ++area.at;
+  }
   largest[index(Monitor::area_fraction)] = area;
-  largest[index(Monitor::knudsen_density)] = density_jump;
-  largest[index(Monitor::knudsen_temperature)] = temperature_jump;
-  largest[index(Monitor::collision_flow)] = flow;
+  largest[index(Monitor::knudsen_density)] = largest_of(work.density_jump);
+  largest[index(Monitor::knudsen_temperature)] = largest_of(work.temperature_jump);
+  const Largest flow_largest = largest_of(work.flow);
+  largest[index(Monitor::collision_flow)] = flow_largest;
   // l |dv/dx| / T^{1/2} = (sqrt(2 pi)/8) g = sqrt(pi/2) tau |dv/dx|, at the same cell.
-  largest[index(Monitor::knudsen_velocity)] = {kMeanFreePathCoefficient * (4.0 * flow.value),
-                                               flow.at};
+  largest[index(Monitor::knudsen_velocity)] = {
+      kMeanFreePathCoefficient * (4.0 * flow_largest.value), flow_largest.at};
   ValidityMeasures out;
   for (const auto& d : monitor_definitions()) {
     const int k = index(d.monitor), at = largest[k].at;
@@ -109,6 +132,12 @@ ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& 
     out[k].x = wrap_position(at_node ? s.node_x[at] : cell_centre(s, at));
   }
   return out;
+}
+
+ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
+                                  const ValidityScales& scales) {
+  ValidityWorkspace work;
+  return measure_validity(s, cells, scales, work);
 }
 
 ValidityRecord::ValidityRecord(const ValidityScales& scales)

@@ -12,6 +12,7 @@
 // gradients those of the nodes (between their cells), with l the mean of the two cells'.
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "hydro/closure.hpp"
 #include "hydro/lagrangian_state.hpp"
@@ -53,7 +54,15 @@ struct MonitorValue {
 };
 using ValidityMeasures = std::array<MonitorValue, kMonitors>;
 
-// One pass over the cells of state s (cells: its widths and densities, measure_cells).
+// Per-cell values of the monitors, kept between calls so that a run measuring every step
+// allocates them once.
+struct ValidityWorkspace {
+  std::vector<double> inverse_collisions, flow, density_jump, temperature_jump;
+};
+
+// The monitors of state s (cells: its widths and densities, measure_cells).
+ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
+                                  const ValidityScales& scales, ValidityWorkspace& work);
 ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
                                   const ValidityScales& scales);
 
