@@ -1,6 +1,7 @@
 // The atlas's comparison power judged by the transport fit (docs/atlas.md, "Comparison power"):
 // the catch rule on synthetic fit results, the factor an injection moves the fitted coefficient
-// by, and `granvv atlas` on a tiny shear wave of event-driven disks (real engine, real CLI).
+// by, and `granvv atlas` on a tiny shear wave of event-driven disks (real engine, real CLI): the
+// new atlas.json keys, their verdicts against the rule, and a cache entry without its fit run again.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,12 +114,13 @@ TEST(AtlasTransportPower, AtlasJudgesInjectedErrorsByTheFit) {
   const fs::path file = dir / "tiny_shear_wave.toml";
   std::ofstream(file) << kShearWave;
   // eps = 1e-4 moves eta by far less than the fit's error; eps = 20 (eta times 21) by dozens.
-  const auto r = run_cli(
+  const std::string args =
       "atlas " + shell_quote(file.string()) + " --quiet --no-report --jobs 1 --out " +
       shell_quote((dir / "atlas").string()) +
       " --set 'atlas.ensembles=[2,8]' --set 'atlas.injected_errors=[0.0001,20]'"
       " --set 'atlas.cells=[50]' --set 'atlas.step_factors=[1]'"
-      " --set 'atlas.max_overlaps=[0.1]' --set 'atlas.steps_per_contacts=[10]' --budget 300");
+      " --set 'atlas.max_overlaps=[0.1]' --set 'atlas.steps_per_contacts=[10]' --budget 300";
+  const auto r = run_cli(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = json::parse(read_text(dir / "atlas" / "atlas.json"));
   const json& power = a["comparison_power"];
@@ -162,6 +164,22 @@ TEST(AtlasTransportPower, AtlasJudgesInjectedErrorsByTheFit) {
     }
   }
   EXPECT_TRUE(eight) << power.dump();
+  // A particle run cached without its fit (as before fits were kept) is run again, and only it.
+  int stripped = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "atlas" / "runs")) {
+    json run = json::parse(read_text(entry.path()));
+    if (stripped == 0 && run["transport"].is_object()) {
+      run.erase("transport");
+      std::ofstream(entry.path()) << run.dump();
+      ++stripped;
+    }
+  }
+  ASSERT_EQ(stripped, 1);
+  const auto again = run_cli(args);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("cached without its transport fit"), std::string::npos)
+      << again.output;
+  EXPECT_EQ(json::parse(read_text(dir / "atlas" / "atlas.json"))["runs_made"], 1);
   fs::remove_all(dir);
 }
 
