@@ -89,6 +89,10 @@ AtlasTransportFit fit_transport(const CaseConfig& config, const MdScene& md,
   const auto start = std::chrono::steady_clock::now();
   const std::optional<CompareScene> compare = compare_scene_from(config);
   AtlasTransportFit fit;
+  if (!compare || !compare->transport) {
+    fit.failure = "the setting's case measures no transport coefficient";
+    return fit;
+  }
   fit.coefficient = compare->transport->coefficient;
   try {
     HydroScene hydro = hydro_scene_from(config);
