@@ -447,16 +447,14 @@ void run_parts(RunContext& c, const std::optional<CompareScene>& compare_scene,
   if (compare_scene) {
     md = run_particle_part(c);
     finish_particles();
-    const auto& sc = c.md_scene->spec.scene;
+    const hydro::Physics given = c.scene.physics;
+    prepare_comparison_hydro(c.scene, *compare_scene, *c.md_scene, md->fields);
     if (compare_scene->hydro_from_md) {
-      c.scene.given_fields = fields_from_snapshot(md->fields.snapshots.front(), sc);
       c.log.info(
           "hydro: starting from the MD's coarse-grained t = 0 fields ({} bins, {} "
           "members)",
           c.md_scene->spec.bins, md->runs.size());
     }
-    const hydro::Physics given = c.scene.physics;
-    align_hydro_with_md(c.scene, sc, c.md_scene->spec.t_end, md->fields);
     c.log.info(
         "hydro: K = {:.6g}, q = {:.6g} from the particle scene (case: physics.K = {:.6g}, "
         "physics.q = {:.6g})",

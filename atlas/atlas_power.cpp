@@ -5,6 +5,7 @@
 
 #include "atlas/detectable_error.hpp"
 #include "compare/side_by_side.hpp"
+#include "models/transport_measurement.hpp"
 #include "scene/case_schema.hpp"
 #include "scene/hydro_scene.hpp"
 #include "scene/json_numbers.hpp"
@@ -46,6 +47,79 @@ atlas::JudgedHydro judge(const AtlasScene& scene, const AtlasRun& hydro, const A
   return j;
 }
 
+// The factor on the scene's fitted coefficient of each injected hydro (per key and direction, one
+// per eps; models/transport_measurement.hpp), and the keys that move it.
+struct InjectedFactors {
+  json factors = json::object();
+  std::vector<std::string> judged;
+};
+
+InjectedFactors injected_factors(const AtlasScene& scene, const std::vector<std::string>& keys,
+                                 const std::vector<double>& epsilons) {
+  InjectedFactors out;
+  for (const auto& key : keys) {
+    bool moves = false;
+    for (const Direction d : kDirections) {
+      json row = json::array();
+      for (double eps : epsilons) {
+        const double f = injected_coefficient_factor(scene.transport_coefficient, *scene.case_hydro,
+                                                     "hydro." + key, injected_factor(eps, d.sign));
+        moves |= f != 1.0;
+        row.push_back(f);
+      }
+      out.factors[key][d.name] = row;
+    }
+    if (moves) out.judged.push_back(key);
+  }
+  return out;
+}
+
+// One particle run's transport fit and what it catches of each injected error.
+json transport_fit_row(const AtlasScene& scene, const AtlasRun& particles,
+                       const InjectedFactors& injected, const std::vector<std::string>& keys,
+                       const std::vector<double>& epsilons) {
+  if (!particles.transport) return {{"failure", "the run kept no transport fit"}};
+  const AtlasTransportFit& t = *particles.transport;
+  // A fit at the end of its factor grid does not bracket F (its error is not F's): no fit.
+  const bool fitted = t.failure.empty() && !t.at_grid_edge && std::isfinite(t.factor) &&
+                      std::isfinite(t.error) && t.error > 0.0;
+  json detectable = json::object(), verdicts = json::object();
+  for (const auto& key : keys) {
+    const bool judged =
+        std::find(injected.judged.begin(), injected.judged.end(), key) != injected.judged.end();
+    for (const Direction d : kDirections) {
+      std::vector<bool> caught, finished;
+      json marks = json::array();
+      for (std::size_t i = 0; i < epsilons.size(); ++i) {
+        const double f = injected.factors[key][d.name][i].get<double>();
+        finished.push_back(fitted && judged);
+        caught.push_back(finished.back() &&
+                         atlas::catches_by_transport_fit(t.factor, t.error, f, scene.sigmas));
+        marks.push_back(!judged         ? "not_judged"
+                        : !fitted       ? "no_fit"
+                        : caught.back() ? "caught"
+                                        : "missed");
+      }
+      const auto from = atlas::smallest_detectable(epsilons, caught, finished);
+      detectable[key][d.name] = from ? json(*from) : json(nullptr);
+      verdicts[key][d.name] = marks;
+    }
+  }
+  return {{"factor", number_or_null(t.factor)},
+          {"error", number_or_null(t.error)},
+          {"chi2", number_or_null(t.chi2)},
+          {"degrees_of_freedom", t.degrees_of_freedom},
+          {"at_grid_edge", t.at_grid_edge},
+          {"wall_seconds", t.wall_seconds},
+          {"failure", t.failure.empty() ? json(nullptr) : json(t.failure)},
+          {"unperturbed_off",
+           fitted ? json(atlas::off_by_transport_fit(t.factor, t.error, 1.0, scene.sigmas))
+                  : json(nullptr)},
+          {"unperturbed_pull", fitted ? json((1.0 - t.factor) / t.error) : json(nullptr)},
+          {"detectable", detectable},
+          {"verdicts", verdicts}};
+}
+
 }  // namespace
 
 std::vector<AtlasSetting> comparison_power_settings(const ModelFamily& hydro,
@@ -75,6 +149,9 @@ json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
     }
     return nullptr;
   };
+  const bool fits = !scene.transport_coefficient.empty();
+  const InjectedFactors injected =
+      fits ? injected_factors(scene, hydro.injected_error_keys(), epsilons) : InjectedFactors{};
   json rows = json::array();
   for (const AtlasRun* p : particle_runs) {
     compare::Disagreement base_kind = compare::Disagreement::none;
@@ -96,33 +173,53 @@ json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
         verdicts[key][d.name] = marks;
       }
     }
-    rows.push_back(
-        {{"setting", setting_json(p->setting)},
-         {"wall_seconds", p->cost.wall_seconds},
-         {"work", p->cost.work},
-         {"work_unit", p->cost.work_unit},
-         {"unperturbed",
-          {{"disagreement", compare::disagreement_name(base_kind)},
-           {"finished", base.finished},
-           {"agreed_throughout", base.agreed_throughout},
-           {"agreed_until", base.agreed_until ? json(*base.agreed_until) : json(nullptr)}}},
-         {"detectable", detectable},
-         {"verdicts", verdicts}});
+    json row = {{"setting", setting_json(p->setting)},
+                {"wall_seconds", p->cost.wall_seconds},
+                {"work", p->cost.work},
+                {"work_unit", p->cost.work_unit},
+                {"unperturbed",
+                 {{"disagreement", compare::disagreement_name(base_kind)},
+                  {"finished", base.finished},
+                  {"agreed_throughout", base.agreed_throughout},
+                  {"agreed_until", base.agreed_until ? json(*base.agreed_until) : json(nullptr)}}},
+                {"detectable", detectable},
+                {"verdicts", verdicts}};
+    if (fits) {
+      row["transport_fit"] =
+          transport_fit_row(scene, *p, injected, hydro.injected_error_keys(), epsilons);
+    }
+    rows.push_back(row);
   }
-  return {{"hydro", setting_json(unperturbed.setting)},
-          {"keys", hydro.injected_error_keys()},
-          {"epsilons", epsilons},
-          {"directions", {"up: the coefficient times (1 + eps)", "down: divided by (1 + eps)"}},
-          {"signal_to_noise", number_or_null(scene.signal_to_noise)},
-          {"disks_per_member", scene.particle_count},
-          {"how",
-           "each injected hydro is judged side by side against each particle run as granvv run "
-           "judges its comparison (compare.sigmas, compare.agreement_fraction, the verdict "
-           "rule); an eps is caught when the verdict is a model disagreement that the "
-           "unperturbed hydro does not have (an earlier parting, or any parting where it "
-           "agreed throughout); detectable is the smallest eps from which every larger one is "
-           "caught"},
-          {"particles", rows}};
+  json power = {
+      {"hydro", setting_json(unperturbed.setting)},
+      {"keys", hydro.injected_error_keys()},
+      {"epsilons", epsilons},
+      {"directions", {"up: the coefficient times (1 + eps)", "down: divided by (1 + eps)"}},
+      {"signal_to_noise", number_or_null(scene.signal_to_noise)},
+      {"disks_per_member", scene.particle_count},
+      {"how",
+       "each injected hydro is judged side by side against each particle run as granvv run "
+       "judges its comparison (compare.sigmas, compare.agreement_fraction, the verdict "
+       "rule); an eps is caught when the verdict is a model disagreement that the "
+       "unperturbed hydro does not have (an earlier parting, or any parting where it "
+       "agreed throughout); detectable is the smallest eps from which every larger one is "
+       "caught"},
+      {"particles", rows}};
+  if (fits) {
+    power["transport_fit"] = {
+        {"coefficient", scene.transport_coefficient},
+        {"injected_factors", injected.factors},
+        {"keys_judged", injected.judged},
+        {"how",
+         "at each particle run the factor F on the closure's coefficient is fitted to the "
+         "members' k = 1 mode with its jackknife standard error, as granvv run fits it; an "
+         "injected hydro's factor is its coefficient over the closure's; an eps is caught when "
+         "the injected hydro is more than compare.sigmas standard errors from F while the "
+         "unperturbed closure (factor 1) is not (unperturbed_off: it is, and nothing is "
+         "caught); a fit that failed or ended at the edge of its factor grid judges nothing "
+         "(no_fit); keys that do not move the coefficient are not judged"}};
+  }
+  return power;
 }
 
 // The comparison power within its share of the budget (atlas/atlas_power.hpp): the eps grid is

@@ -5,7 +5,10 @@
 // divided by it, over a log grid of eps; each of these hydros is judged side by side against
 // every particle run of the reference engine (its ensemble sizes are the particle cost axis),
 // as `granvv run` judges its comparison, and the smallest eps the comparison catches
-// (atlas/detectable_error.hpp) is found for each particle cost.
+// (atlas/detectable_error.hpp) is found for each particle cost. On a scene that measures one
+// transport coefficient the same injected errors are also judged by each particle run's
+// transport fit (AtlasRun::transport): the injected hydro's factor on the coefficient
+// (models/transport_measurement.hpp, injected_coefficient_factor) against the fitted F ± sigma.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -26,8 +29,10 @@ std::vector<AtlasSetting> comparison_power_settings(const ModelFamily& hydro,
 
 // atlas.json `comparison_power`: the unperturbed hydro's judgement against each particle run,
 // and for each particle run, key and direction the verdict of every eps and the smallest eps
-// caught (null: none up to the largest that finished). `hydro_runs` holds the runs of
-// comparison_power_settings (any order; a missing or failed one counts as not finished).
+// caught (null: none up to the largest that finished); on a scene with a transport coefficient
+// (AtlasScene::transport_coefficient) also `transport_fit`, the same by the fit. `hydro_runs`
+// holds the runs of comparison_power_settings (any order; a missing or failed one counts as not
+// finished).
 nlohmann::json comparison_power(const ModelFamily& hydro, const AtlasScene& scene,
                                 const AtlasRun& unperturbed,
                                 const std::vector<AtlasRun>& hydro_runs,

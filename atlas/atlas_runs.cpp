@@ -100,6 +100,63 @@ fields::FieldSeries series_from_json(const json& j) {
   return f;
 }
 
+bool is_number_or_null(const json& x) {
+  return x.is_number() || x.is_null();
+}
+
+json transport_json(const std::optional<AtlasTransportFit>& t) {
+  if (!t) return nullptr;
+  return {{"coefficient", t->coefficient},
+          {"factor", number_or_null(t->factor)},
+          {"error", number_or_null(t->error)},
+          {"chi2", number_or_null(t->chi2)},
+          {"degrees_of_freedom", t->degrees_of_freedom},
+          {"at_grid_edge", t->at_grid_edge},
+          {"wall_seconds", t->wall_seconds},
+          {"failure", t->failure}};
+}
+
+AtlasTransportFit transport_from_json(const json& j) {
+  auto number = [&](const char* key) {
+    return j[key].is_number() ? j[key].get<double>() : kNoValue;
+  };
+  AtlasTransportFit t;
+  t.coefficient = j["coefficient"].get<std::string>();
+  t.factor = number("factor");
+  t.error = number("error");
+  t.chi2 = number("chi2");
+  t.degrees_of_freedom = j["degrees_of_freedom"].get<int>();
+  t.at_grid_edge = j["at_grid_edge"].get<bool>();
+  t.wall_seconds = j["wall_seconds"].get<double>();
+  t.failure = j["failure"].get<std::string>();
+  return t;
+}
+
+// "" if the entry's transport fit is what transport_json writes; `needed`: the family keeps a
+// fit for this scene, so a finished run cached without one (before fits were kept) runs again.
+std::string transport_problem(const json& j, bool needed) {
+  if (!j.contains("transport") || j["transport"].is_null()) {
+    return needed && j["status"] == "ok" ? "cached without its transport fit" : "";
+  }
+  const json& t = j["transport"];
+  if (!t.is_object()) return "transport is not an object";
+  for (const char* key : {"coefficient", "failure"}) {
+    if (!t.contains(key) || !t[key].is_string())
+      return std::string("transport.") + key + " is not a text";
+  }
+  for (const char* key : {"factor", "error", "chi2"}) {
+    if (!t.contains(key) || !is_number_or_null(t[key]))
+      return std::string("transport.") + key + " is not a number";
+  }
+  if (!t.contains("wall_seconds") || !t["wall_seconds"].is_number())
+    return "transport.wall_seconds is not a number";
+  if (!t.contains("degrees_of_freedom") || !t["degrees_of_freedom"].is_number_integer())
+    return "transport.degrees_of_freedom is not an integer";
+  if (!t.contains("at_grid_edge") || !t["at_grid_edge"].is_boolean())
+    return "transport.at_grid_edge is not true or false";
+  return "";
+}
+
 json run_json(const AtlasRun& r, const json& inputs) {
   json j = {{"format", kCacheFormat},
             {"status", r.status},
@@ -120,12 +177,9 @@ json run_json(const AtlasRun& r, const json& inputs) {
   j["scalar_errors"] = errors;
   j["fields"] = r.fields ? series_json(*r.fields) : json(nullptr);
   j["monitors"] = r.monitor_crossings;
+  j["transport"] = transport_json(r.transport);
   j["inputs"] = inputs;
   return j;
-}
-
-bool is_number_or_null(const json& x) {
-  return x.is_number() || x.is_null();
 }
 
 // "" if `a` is an array of numbers or nulls (of `size` entries unless size < 0).
@@ -168,8 +222,9 @@ std::string snapshot_problem(const json& s, double t, int bins) {
 
 // Why a cache entry is not a run that run_json wrote for this scene ("" if it is): every value
 // of the right type, the energies one per compared time, the times among the scene's and the
-// fields one snapshot per time on the scene's bins. An edited or damaged entry is run again.
-std::string entry_problem(const json& j, const AtlasScene& scene) {
+// fields one snapshot per time on the scene's bins, and the transport fit where the family keeps
+// one. An edited or damaged entry is run again.
+std::string entry_problem(const json& j, const AtlasScene& scene, bool needs_transport) {
   if (!j.is_object()) return "not a JSON object";
   if (!j.contains("format") || !j["format"].is_number_integer() ||
       j["format"].get<long long>() != kCacheFormat)
@@ -200,6 +255,7 @@ std::string entry_problem(const json& j, const AtlasScene& scene) {
   }
   // A run cached before its monitors were kept is run again.
   if (auto p = object_of_numbers_problem(j, "monitors"); !p.empty()) return p;
+  if (auto p = transport_problem(j, needs_transport); !p.empty()) return p;
   if (!j.contains("fields")) return "fields is missing";
   const json& f = j["fields"];
   if (f.is_null()) return n == 0 ? "" : "times without fields";
@@ -239,6 +295,9 @@ AtlasRun run_from_json(const json& j, const AtlasSetting& setting) {
   if (!j["fields"].is_null()) r.fields = series_from_json(j["fields"]);
   for (const auto& [k, v] : j["monitors"].items())
     r.monitor_crossings[k] = v.is_number() ? v.get<double>() : kNoValue;
+  if (j.contains("transport") && !j["transport"].is_null()) {
+    r.transport = transport_from_json(j["transport"]);
+  }
   r.cached = true;
   return r;
 }
@@ -269,7 +328,8 @@ AtlasRun run_atlas_setting(const AtlasScene& scene, const AtlasSetting& setting,
   const fs::path cache_file = cache_dir / (text_hash(key) + ".json");
   if (std::ifstream in(cache_file); in) {
     const json j = json::parse(in, nullptr, false);
-    std::string problem = j.is_discarded() ? "not JSON" : entry_problem(j, scene);
+    std::string problem =
+        j.is_discarded() ? "not JSON" : entry_problem(j, scene, family.keeps_transport_fit(scene));
     if (problem.empty()) {
       const std::string changed = fingerprint_difference(j["inputs"], inputs);
       if (!changed.empty()) problem = "made from other inputs: " + changed;

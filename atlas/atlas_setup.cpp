@@ -5,6 +5,7 @@
 
 #include "atlas/atlas_analysis.hpp"
 #include "atlas/detectable_error.hpp"
+#include "compare/transport_coefficients.hpp"
 #include "md_bridge/hard_disk_theory.hpp"
 #include "models/compare_scene.hpp"
 #include "models/model.hpp"
@@ -100,6 +101,11 @@ AtlasSetup atlas_setup(const std::string& case_name, const std::vector<std::stri
         md::haff_time_md(md->spec.scene, md::enskog_chi(md->spec.scene.area_fraction));
     scene.t0_theory = md->spec.scene.scaled_time(scene.md_t_haff);
     scene.signal_to_noise = initial_signal_to_noise(*md).ratio();
+  }
+  if (const auto compare = compare_scene_from(config);
+      compare && compare->transport &&
+      !compare::find_transport_pair(compare->transport->coefficient)) {
+    scene.transport_coefficient = compare->transport->coefficient;
   }
   const std::string initial_type = hydro.initial.type;
   scene.has_inertia_reference = hydro::inertia_reference(hydro.initial).has_value();

@@ -19,6 +19,16 @@ bool catches_injected_error(const JudgedHydro& perturbed, const JudgedHydro& unp
   return !perturbed.agreed_until || *perturbed.agreed_until < *unperturbed.agreed_until;
 }
 
+bool off_by_transport_fit(double fitted, double error, double hydro_factor, double sigmas) {
+  if (!std::isfinite(fitted) || !std::isfinite(error) || !(error > 0.0)) return false;
+  return std::abs(hydro_factor - fitted) > sigmas * error;
+}
+
+bool catches_by_transport_fit(double fitted, double error, double injected_factor, double sigmas) {
+  return off_by_transport_fit(fitted, error, injected_factor, sigmas) &&
+         !off_by_transport_fit(fitted, error, 1.0, sigmas);
+}
+
 std::optional<double> smallest_detectable(const std::vector<double>& epsilons,
                                           const std::vector<bool>& caught,
                                           const std::vector<bool>& finished) {

@@ -28,6 +28,16 @@ struct JudgedHydro {
 // caught when either run did not finish.
 bool catches_injected_error(const JudgedHydro& perturbed, const JudgedHydro& unperturbed);
 
+// The transport fit's judgement (docs/atlas.md, "Comparison power"): the particles' fitted
+// factor F on the closure's coefficient, with its jackknife standard error, against a hydro whose
+// coefficient is `hydro_factor` times the closure's. The hydro is off when it lies more than
+// `sigmas` standard errors from F. Nothing is off for a non-finite F or an error that is not
+// positive (no fit).
+bool off_by_transport_fit(double fitted, double error, double hydro_factor, double sigmas);
+// An injected error is caught when its hydro (at `injected_factor`) is off while the unperturbed
+// closure (factor 1) is not; when the closure itself is off, nothing is caught.
+bool catches_by_transport_fit(double fitted, double error, double injected_factor, double sigmas);
+
 // The smallest eps of an increasing grid from which every larger eps that finished is caught;
 // nullopt when the largest finished eps is not caught (nothing up to it is detectable).
 // `caught` is over the grid; `finished` says which runs count. Throws std::invalid_argument on

@@ -186,6 +186,14 @@ void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, doub
   if (!ctl.output_times.empty()) ctl.t_end = std::max(ctl.t_end, ctl.output_times.back());
 }
 
+void prepare_comparison_hydro(HydroScene& hydro, const CompareScene& compare, const MdScene& md,
+                              const fields::FieldSeries& md_fields) {
+  const md::ParticleScene& sc = md.spec.scene;
+  if (compare.hydro_from_md)
+    hydro.given_fields = fields_from_snapshot(md_fields.snapshots.front(), sc);
+  align_hydro_with_md(hydro, sc, md.spec.t_end, md_fields);
+}
+
 hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& s,
                                           const md::ParticleScene& scene) {
   const double n0 = scene.number_density();

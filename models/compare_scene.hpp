@@ -53,6 +53,11 @@ std::optional<CompareScene> compare_scene_from(const CaseConfig& config);
 void align_hydro_with_md(HydroScene& hydro, const md::ParticleScene& scene, double md_t_end,
                          const fields::FieldSeries& md_fields);
 
+// The hydro of a comparison, from the case's: started from the particles' coarse-grained t = 0
+// fields where compare.hydro_initial = "md", and aligned with them (align_hydro_with_md).
+void prepare_comparison_hydro(HydroScene& hydro, const CompareScene& compare, const MdScene& md,
+                              const fields::FieldSeries& md_fields);
+
 // Continuous fields through the ensemble-mean bin values of one MD snapshot (scaled units),
 // periodic and piecewise linear between bin centres.
 hydro::InitialFields fields_from_snapshot(const fields::FieldSnapshot& snapshot,

@@ -1,6 +1,7 @@
 // The particle families (models/particle_family.hpp): the ensemble of any registered engine, its
 // run reduced to what the atlas judges, and the table of engines that have a family of their own.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <map>
@@ -11,6 +12,7 @@
 #include "models/model.hpp"
 #include "models/particle_family.hpp"
 #include "models/setting_run.hpp"
+#include "models/transport_measurement.hpp"
 #include "scene/case_config.hpp"
 #include "scene/interruption.hpp"
 #include "scene/md_scene.hpp"
@@ -79,6 +81,37 @@ void take_collisional_pressure(const MdScene& md, const MdOutcome& outcome, Atla
   run.scalar_errors["compressibility"] = z.standard_error[0];
 }
 
+// The scene's transport fit on this run's members, as `granvv run` makes it: the comparison's
+// hydro (from the members' t = 0 fields where the case says so) on the fit's factor grid. A fit
+// that cannot be made is kept with why.
+AtlasTransportFit fit_transport(const CaseConfig& config, const MdScene& md,
+                                const MdOutcome& outcome) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::optional<CompareScene> compare = compare_scene_from(config);
+  AtlasTransportFit fit;
+  if (!compare || !compare->transport) {
+    fit.failure = "the setting's case measures no transport coefficient";
+    return fit;
+  }
+  fit.coefficient = compare->transport->coefficient;
+  try {
+    HydroScene hydro = hydro_scene_from(config);
+    prepare_comparison_hydro(hydro, *compare, md, outcome.fields);
+    const TransportMeasurement m =
+        measure_transport(*compare->transport, {hydro.closure}, hydro, md, outcome);
+    fit.factor = m.fit.factor;
+    fit.error = m.fit.error;
+    fit.chi2 = m.fit.chi2;
+    fit.degrees_of_freedom = m.fit.degrees_of_freedom;
+    fit.at_grid_edge = m.fit.at_grid_edge;
+  } catch (const std::exception& e) {  // too few members or snapshots, a failed grid hydro
+    fit.failure = e.what();
+  }
+  fit.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return fit;
+}
+
 // A particle run that threw, in the atlas's failure names (models/model_setting.hpp).
 std::string particle_failure(const std::string& what) {
   if (what.find("misses md.restitution") != std::string::npos) return "restitution_check_missed";
@@ -99,6 +132,10 @@ std::optional<std::string> ParticleFamily::not_applicable(const AtlasScene& scen
 
 bool ParticleFamily::is_case_model(const AtlasScene& scene) const {
   return scene.particles && scene.config->string("md.engine") == engine_;
+}
+
+bool ParticleFamily::keeps_transport_fit(const AtlasScene& scene) const {
+  return is_case_model(scene) && !scene.transport_coefficient.empty();
 }
 
 AtlasSetting ParticleFamily::case_setting(const AtlasScene& scene) const {
@@ -171,6 +208,7 @@ void ParticleFamily::run(const AtlasScene& scene, const CaseConfig& config, Atla
     take_energy_errors(scene, r, model.outcome(), run);
     take_collisional_pressure(*md, model.outcome(), run);
     take_engine_details(model.outcome().engine_details, run);
+    if (keeps_transport_fit(scene)) run.transport = fit_transport(config, *md, model.outcome());
     run.status = "ok";
   } catch (const ConfigError&) {
     throw;

@@ -95,6 +95,9 @@ class ModelFamily {
   // The keys of the model errors the comparison power can inject (in the family's case table;
   // empty: none).
   virtual std::vector<std::string> injected_error_keys() const { return {}; }
+  // Whether the family's runs of the scene keep their transport fit (AtlasRun::transport): the
+  // particle axis of the comparison power on a scene that measures a coefficient.
+  virtual bool keeps_transport_fit(const AtlasScene&) const { return false; }
   // Whether the atlas maps the bias of its contact knobs against the hard disks (DEM map).
   virtual bool has_contact_map() const { return false; }
   // Whether the case runs runs of this family on threads (particle engines call MPI: in turn).

@@ -32,6 +32,18 @@ struct AtlasSetting {
   }
 };
 
+// The transport fit of a particle run (models/transport_measurement.hpp, as `granvv run` makes
+// it): the factor F on the case's closure's coefficient that the particles' k = 1 mode follows,
+// with its jackknife standard error; or why it could not be made.
+struct AtlasTransportFit {
+  std::string coefficient;  // compare.transport
+  double factor = 0.0, error = 0.0, chi2 = 0.0;
+  int degrees_of_freedom = 0;
+  bool at_grid_edge = false;
+  double wall_seconds = 0.0;  // the fit's hydro runs on its factor grid
+  std::string failure;        // empty when F was fitted
+};
+
 // What the atlas keeps of a run.
 struct AtlasRun {
   AtlasSetting setting;
@@ -57,6 +69,8 @@ struct AtlasRun {
   // A hydro's validity monitors (hydro/validity_monitors.hpp) that reached their threshold: the
   // monitor's name and the first time it did (scaled units).
   std::map<std::string, double> monitor_crossings;
+  // A run of a family that keeps a transport fit for the scene (ModelFamily::keeps_transport_fit).
+  std::optional<AtlasTransportFit> transport;
   bool cached = false;  // taken from the cache, not run now
   // Why a cache entry of this setting was not used (edited, damaged, or of other inputs).
   std::string cache_note;
@@ -85,6 +99,9 @@ struct AtlasScene {
   double agreement_fraction = 0.0;
   double signal_to_noise = 0.0;
   bool has_inertia_reference = false;
+  // compare.transport when the case measures one coefficient by the transport fit (empty: none,
+  // or a pair, which the atlas does not judge).
+  std::string transport_coefficient;
 };
 
 }  // namespace granvv::app

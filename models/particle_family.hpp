@@ -20,6 +20,8 @@ class ParticleFamily : public ModelFamily {
   std::vector<KnobSpec> knobs() const override;
   std::optional<std::string> not_applicable(const AtlasScene& scene) const override;
   bool is_case_model(const AtlasScene& scene) const override;
+  // The case's own engine, on a scene that measures one transport coefficient.
+  bool keeps_transport_fit(const AtlasScene& scene) const override;
   AtlasSetting case_setting(const AtlasScene& scene) const override;
   // The case's own setting with one member.
   AtlasSetting pilot(const AtlasScene& scene) const override;

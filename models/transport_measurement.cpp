@@ -120,4 +120,16 @@ TransportMeasurement measure_transport(const CompareScene::Transport& transport,
   return out;
 }
 
+double injected_coefficient_factor(const std::string& coefficient, const HydroScene& hydro,
+                                   const std::string& key, double factor) {
+  const compare::TransportCoefficient& c = compare::transport_coefficient(coefficient);
+  HydroScene own = hydro;
+  own.factors = {};
+  HydroScene injected = own;
+  set_transport_factor(injected, key, factor);
+  const double K = own.physics.K;
+  return c.relative_value(*make_hydro_closure(injected), K, 1, 1) /
+         c.relative_value(*make_hydro_closure(own), K, 1, 1);
+}
+
 }  // namespace granvv::app

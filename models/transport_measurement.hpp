@@ -55,4 +55,18 @@ TransportMeasurement measure_transport(const CompareScene::Transport& transport,
                                        const HydroScene& hydro, const MdScene& md,
                                        const MdOutcome& md_out);
 
+// The factor on the closure's `coefficient` (relative to the closure, as the fit's F) of the
+// hydro whose case key `key` (hydro.*_factor) is multiplied by `factor`. The fit's F multiplies
+// every factor key of the coefficient together, so a hydro with one of them at f is the grid's
+// hydro at F = f for a coefficient of that key alone (shear_viscosity), and for
+// effective_conductivity its kappa - mu n/T is (f kappa - mu n/T) or (kappa - f mu n/T) over the
+// closure's: the value of the closure with the injection over that without, each at the
+// homogeneous state (n = T = 1; the ratio does not depend on T for hard disks). A
+// pressure-balanced mode sees the heat flux -(kappa - mu n/T) dT/dx alone (dn/dx = -(n/T)
+// dT/dx, docs/physics.md §15), so to linear order that hydro's mode decays as the grid's at this
+// F. A key outside the coefficient (hydro.cooling_factor, or hydro.viscosity_factor for a
+// conductivity) gives 1: the fit measures the coefficient, not it.
+double injected_coefficient_factor(const std::string& coefficient, const HydroScene& hydro,
+                                   const std::string& key, double factor);
+
 }  // namespace granvv::app

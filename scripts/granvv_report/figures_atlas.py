@@ -2,7 +2,8 @@
 panel per judged observable; a2 the stability map of each hydro over cells and step factor; a3 the
 ladder timeline; a4 the DEM stability and bias map over max_overlap x steps_per_contact, against the
 event-driven hard disks; a5 the comparison power, the smallest injected model error of the hydro that the
-side-by-side comparison catches, against the particles' cost. Errors are relative, against the richest model's finest run; costs in wall
+side-by-side comparison catches, against the particles' cost; a6 the same judged by the transport fit
+of a scene that measures a coefficient. Errors are relative, against the richest model's finest run; costs in wall
 seconds."""
 import math
 
@@ -256,6 +257,33 @@ def fig_dem_map(run):
 POWER_COLOR = {"viscosity_factor": "C0", "conductivity_factor": "C1", "mu_factor": "C2", "cooling_factor": "C3"}
 
 
+def plot_smallest_eps(ax, rows, cost, keys, eps, detectable_of, measured):
+    """Per key and direction the smallest caught ε of each particle run (detectable_of(row) holds
+    detectable.<key>.<up|down>): a line where caught, a triangle at the top where none is; one
+    measured row each, with the run's members and wall seconds."""
+    top = max(eps) * 1.6 if eps else 1.0
+    for key in keys:
+        color = POWER_COLOR.get(key, "k")
+        for direction, ls in (("up", "-"), ("down", "--")):
+            label = f"{key.replace('_factor', '')} {'×' if direction == 'up' else '÷'} (1 + ε)"
+            x, y, missed = [], [], []
+            for r in rows:
+                d = ((detectable_of(r) or {}).get(key) or {}).get(direction)
+                if d is None:
+                    missed.append(cost[id(r)])
+                else:
+                    x.append(cost[id(r)])
+                    y.append(d)
+                what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
+                members = (r.get("setting") or {}).get("ensemble")
+                measured.append((f"{label}, {members} members ({fmt(r.get('wall_seconds'), 3)} s)", what, None))
+            if x:
+                ax.plot(x, y, ls=ls, marker="o", color=color, mfc=color if direction == "up" else "none", label=label)
+            if missed:
+                ax.scatter(missed, [top] * len(missed), marker="^", color=color,
+                           facecolors=color if direction == "up" else "none", label=None if x else label + " (none caught)")
+
+
 @figure(file="a5_comparison_power.png", section="atlas", anchor="comparison_power",
         title="Comparison power: the smallest model error the particles can catch",
         caption=("The hydro at the case's own setting ({hydro}) with one transport coefficient multiplied by "
@@ -275,29 +303,9 @@ def fig_comparison_power(run):
     rows = sorted(power["particles"], key=lambda r: (r.get("setting") or {}).get("ensemble") or 0)
     cost = {id(r): per * ((r.get("setting") or {}).get("ensemble") or 1) for r in rows}
     eps = power.get("epsilons") or []
-    top = max(eps) * 1.6 if eps else 1.0
     fig, ax = plt.subplots(figsize=(6.8, 4.3), layout="constrained")
     measured = []
-    for key in power.get("keys") or []:
-        color = POWER_COLOR.get(key, "k")
-        for direction, ls in (("up", "-"), ("down", "--")):
-            label = f"{key.replace('_factor', '')} {'×' if direction == 'up' else '÷'} (1 + ε)"
-            x, y, missed = [], [], []
-            for r in rows:
-                d = ((r.get("detectable") or {}).get(key) or {}).get(direction)
-                if d is None:
-                    missed.append(cost[id(r)])
-                else:
-                    x.append(cost[id(r)])
-                    y.append(d)
-                what = f"ε ≥ {fmt(d, 3)}" if d is not None else f"none caught up to ε = {fmt(max(eps) if eps else None, 3)}"
-                members = (r.get("setting") or {}).get("ensemble")
-                measured.append((f"{label}, {members} members ({fmt(r['wall_seconds'], 3)} s)", what, None))
-            if x:
-                ax.plot(x, y, ls=ls, marker="o", color=color, mfc=color if direction == "up" else "none", label=label)
-            if missed:
-                ax.scatter(missed, [top] * len(missed), marker="^", color=color,
-                           facecolors=color if direction == "up" else "none", label=None if x else label + " (none caught)")
+    plot_smallest_eps(ax, rows, cost, power.get("keys") or [], eps, lambda r: r.get("detectable"), measured)
     flagged = [cost[id(r)] for r in rows if (r.get("unperturbed") or {}).get("disagreement") == "model"]
     if flagged:
         bottom = min(eps) / 1.6 if eps else 1e-3
@@ -317,4 +325,67 @@ def fig_comparison_power(run):
     return Drawn(fig, measured, caption_values={
         "hydro": f"{hydro.get('model')} cells={hydro.get('cells')}",
         "sn": fmt(power.get("signal_to_noise"), 3), "per": per,
+        "grid": f"{fmt(min(eps), 3)} to {fmt(max(eps), 3)}, {len(eps)} values" if eps else "empty"})
+
+
+@figure(file="a6_comparison_power_transport.png", section="atlas", anchor="comparison_power_transport",
+        title="Comparison power by the transport fit: the smallest coefficient error it catches",
+        caption=("At each particle run of the reference engine the factor F on the {closure} closure's {coefficient} "
+                 "is fitted to the members' k = 1 mode with its jackknife standard error σ, as granvv run fits it "
+                 "(grey, right axis: F ± σ). A hydro with one coefficient multiplied by (1 + ε) (solid) or divided "
+                 "by it (dashed) has the factor its {coefficient} is moved by; ε is caught when that factor is more "
+                 "than {sigmas} σ from F while the unperturbed closure (F = 1) is not. A point is the smallest ε "
+                 "from which every larger ε on the grid ({grid}) is caught; a triangle at the top, none up to the "
+                 "largest; a grey cross at the bottom, a run against which the unperturbed closure is itself off "
+                 "(nothing is caught there). Keys that do not move {coefficient} are not judged ({not_judged}). "
+                 "The particle cost is N × ensemble ({per} disks per member); the table gives each run's wall "
+                 "seconds (the fit's own hydro grid apart)."))
+def fig_comparison_power_transport(run):
+    power = run.atlas("comparison_power")
+    fit = power.get("transport_fit") if isinstance(power, dict) else None
+    if not isinstance(fit, dict) or not power.get("particles"):
+        raise Skip("the scene measures no single transport coefficient (or the comparison power was skipped)")
+    per = power.get("disks_per_member") or 1
+    rows = sorted(power["particles"], key=lambda r: (r.get("setting") or {}).get("ensemble") or 0)
+    cost = {id(r): per * ((r.get("setting") or {}).get("ensemble") or 1) for r in rows}
+    eps = power.get("epsilons") or []
+    top = max(eps) * 1.6 if eps else 1.0
+    bottom = min(eps) / 1.6 if eps else 1e-3
+    fig, ax = plt.subplots(figsize=(6.8, 4.3), layout="constrained")
+    measured = []
+    plot_smallest_eps(ax, rows, cost, fit.get("keys_judged") or [], eps,
+                      lambda r: (r.get("transport_fit") or {}).get("detectable"), measured)
+    off = [cost[id(r)] for r in rows if (r.get("transport_fit") or {}).get("unperturbed_off") is True]
+    if off:
+        ax.scatter(off, [bottom] * len(off), marker="X", color="0.45", s=60, label="the unperturbed closure is off")
+    right = ax.twinx()
+    fx, fy, fe = [], [], []
+    for r in rows:
+        rf = r.get("transport_fit") or {}
+        members = (r.get("setting") or {}).get("ensemble")
+        if isinstance(rf.get("factor"), (int, float)) and isinstance(rf.get("error"), (int, float)) and rf.get("failure") is None:
+            fx.append(cost[id(r)])
+            fy.append(rf["factor"])
+            fe.append(rf["error"])
+            edge = ", at the factor grid's edge" if rf.get("at_grid_edge") else ""
+            measured.append((f"F against {members} members (fit {fmt(rf.get('wall_seconds'), 3)} s)",
+                             f"{fmt(rf['factor'], 4)} ± {fmt(rf['error'], 2)}{edge}", None))
+        else:
+            measured.append((f"F against {members} members", f"no fit: {rf.get('failure')}", None))
+    if fx:
+        right.errorbar(fx, fy, yerr=fe, fmt="s", color="0.55", ms=4, capsize=2)
+        right.axhline(1.0, color="0.75", lw=0.8)
+    right.set_ylabel("fitted factor F ± σ", color="0.45")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(bottom / 1.3, top * 1.3)
+    ax.set_xlabel("particle cost: N × ensemble (disks)")
+    ax.set_ylabel("smallest ε caught by the fit")
+    ax.legend(fontsize=7, loc="best")
+    hydro = power.get("hydro") or {}
+    judged = set(fit.get("keys_judged") or [])
+    return Drawn(fig, measured, caption_values={
+        "coefficient": fit.get("coefficient"), "closure": hydro.get("model"),
+        "sigmas": fmt(run.atlas("sigmas"), 3), "per": per,
+        "not_judged": ", ".join(k for k in power.get("keys") or [] if k not in judged) or "none",
         "grid": f"{fmt(min(eps), 3)} to {fmt(max(eps), 3)}, {len(eps)} values" if eps else "empty"})
