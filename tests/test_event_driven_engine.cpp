@@ -354,8 +354,10 @@ TEST(EventDrivenEngine, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne
     EngineState broken = due;
     array_of(broken, "soonest_partner")[colliding] = partner;
     EventDrivenEngine other(options_for(spec.scene));
+    EXPECT_NE(other.state_problem(broken), "") << partner;  // found before a resume runs
     EXPECT_THROW(other.restore_state(broken), std::invalid_argument) << partner;
   }
+  EXPECT_EQ(fresh.state_problem(due), "");
 }
 
 // A checkpoint inside a segment (the engine's check every 65536 events): one segment of 100
