@@ -291,10 +291,11 @@ std::string resume_problem(const nlohmann::json& inputs, const fs::path& dir,
   }
   try {
     // A member saved in blocks is read back by its group's ranks, each its own block.
-    const MemberGroups groups = member_groups(*make_engine(md_scene, ""), ranks.size);
+    const auto engine = make_engine(md_scene, "");
+    const MemberGroups groups = member_groups(*engine, ranks.size);
     resume_from = load_member_checkpoints(dir, md_scene.ensemble, groups.rank_in_group(ranks.rank),
                                           groups.size);
-    check_member_checkpoints(resume_from, md_scene.spec);
+    check_member_checkpoints(resume_from, md_scene.spec, *engine);
   } catch (const std::exception& e) {
     return std::string("cannot resume: ") + e.what() + "; remove " +
            checkpoint_folder(dir).string() + " to start anew";

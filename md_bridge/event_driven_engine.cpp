@@ -672,6 +672,16 @@ void EventDrivenEngine::restore_state(const EngineState& state) {
   }
 }
 
+std::string EventDrivenEngine::state_problem(const EngineState& state) const {
+  EventDrivenEngine probe(options_);
+  try {
+    probe.restore_state(state);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 void EventDrivenEngine::add_totals(const EngineState& other) {
   EventDrivenEngine run(options_);
   run.restore_state({{}, 1, 0, other.numbers, {}});

@@ -98,6 +98,7 @@ class EventDrivenEngine final : public ParticleEngine {
   EngineValues series_values() const override;
   EngineState save_state(bool with_particles) override;
   void restore_state(const EngineState& state) override;
+  std::string state_problem(const EngineState& state) const override;
   EngineCost cost() const override;  // collisions
   // events, events_per_second, crossings, restitution_effective, collapse_rule.{rule,
   // collapse_speed, collisions_changed, fraction_changed}, max_collision_rate, cells.

@@ -100,6 +100,13 @@ void EventDrivenEngine::restore_whole(const EngineState& state, double segment_t
   for (const double v : calendar)  // every event still to come lies after the last sample
     if (!(v >= t_))
       bad("'calendar_t' holds " + std::to_string(v) + ", before t = " + std::to_string(t_));
+  // A collision on the calendar is with another disk; only a disk at rest and alone, never due,
+  // has a collision entry without a partner.
+  for (std::size_t i = 0; i < n; ++i)
+    if (event[i] == kCollision && calendar[i] != kNever &&
+        !(partner[i] >= 0.0 && partner[i] != double(i)))
+      bad("disk " + std::to_string(i) + " is due to collide at t = " + std::to_string(calendar[i]) +
+          " with partner " + std::to_string(partner[i]));
   const auto& cell = integers("cell", 0, cell_count - 1);
   const auto& place = integers("cell_place", 0, double(n) - 1);
   std::vector<char> seen(n, 0);

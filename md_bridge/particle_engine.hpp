@@ -217,6 +217,10 @@ class ParticleEngine {
   // them on every rank, or each rank its block, as saved on the same number of ranks), or only
   // the totals. Throws std::invalid_argument for a state this engine did not save.
   virtual void restore_state(const EngineState& state) = 0;
+  // Why restore_state would refuse a saved state ("" if it would not, or if the engine finds
+  // out only while it restores), found without touching this engine: a resume refuses a
+  // damaged checkpoint before its run starts.
+  virtual std::string state_problem(const EngineState& /*state*/) const { return ""; }
 
   virtual EngineCost cost() const = 0;
   virtual EngineDetails details() const { return {}; }

@@ -390,10 +390,15 @@ std::string state_problem(const MemberCheckpoint& c, const md::MdRunSpec& spec) 
 }  // namespace
 
 void check_member_checkpoints(const std::vector<MemberCheckpoint>& checkpoints,
-                              const md::MdRunSpec& spec) {
+                              const md::MdRunSpec& spec, const md::ParticleEngine& engine) {
   for (std::size_t m = 0; m < checkpoints.size(); ++m) {
-    if (checkpoints[m].missing) continue;
-    const std::string problem = state_problem(checkpoints[m], spec);
+    const MemberCheckpoint& c = checkpoints[m];
+    if (c.missing) continue;
+    std::string problem = state_problem(c, spec);
+    if (problem.empty() && !c.finished) {
+      const std::string refused = engine.state_problem(c.state.engine);
+      if (!refused.empty()) problem = "a state the engine refuses (" + refused + ")";
+    }
     if (!problem.empty())
       throw std::runtime_error("the checkpoint of member " + std::to_string(m) + " holds " +
                                problem);

@@ -70,10 +70,10 @@ std::vector<MemberCheckpoint> load_member_checkpoints(const std::filesystem::pat
 
 // Throws std::runtime_error naming the member and what is wrong if a loaded checkpoint cannot
 // belong to a run of spec: its place in the run, the lengths and finiteness of its series, its
-// snapshots' bins, its particles' count and finiteness, its engine's numbers. The engine checks
-// its own arrays when it restores them.
+// snapshots' bins, its particles' count and finiteness, its engine's numbers, and the engine's
+// own state of a member in progress as `engine` (an engine of the run) finds it.
 void check_member_checkpoints(const std::vector<MemberCheckpoint>& checkpoints,
-                              const md::MdRunSpec& spec);
+                              const md::MdRunSpec& spec, const md::ParticleEngine& engine);
 
 // Removes the checkpoint folder (after a run whose results are complete); never throws.
 void remove_checkpoints(const std::filesystem::path& out_dir);

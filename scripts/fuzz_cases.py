@@ -31,7 +31,8 @@ again) with an atlas.json that is strict JSON.
 
 Usage: fuzz_cases.py --granvv build/granvv [--count 2000] [--seed 1] [--real-fraction 0.1]
                      [--timeout 120] [--jobs 1] [--work DIR] [--kind cases|files|both]
-Prints the counts; exits 1 if any input broke an assertion (each is printed with its command).
+Prints the counts; exits 1 if any input broke an assertion (each is printed with its command), 2
+if stopped (SIGTERM or SIGINT) before the last input, with the counts of those it finished.
 """
 import argparse
 import concurrent.futures
@@ -42,6 +43,7 @@ import os
 import random
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -446,20 +448,34 @@ def main():
         return make_input(rng, scenes, keys_of, args.real_fraction)
     items = [one() for _ in range(args.count)]
     counts, failures = {}, []
+
+    # SIGTERM or SIGINT stops a long run with the counts of the inputs finished so far (the
+    # inputs are drawn before any runs, so those are the first inputs of the seed, give or take
+    # the ones running in parallel).
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGTERM, stop)
+    done, stopped = 0, False
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futures = [pool.submit(check_one, i, args, item, env) for i, item in enumerate(items)]
-        for f in concurrent.futures.as_completed(futures):
-            kind, problem, text = f.result()
-            counts[kind] = counts.get(kind, 0) + 1
-            if problem:
-                failures.append((kind, problem, text))
-                log("FAIL [%s] %s\n    %s" % (kind, problem, text[:2000]))
+        try:
+            for f in concurrent.futures.as_completed(futures):
+                kind, problem, text = f.result()
+                done += 1
+                counts[kind] = counts.get(kind, 0) + 1
+                if problem:
+                    failures.append((kind, problem, text))
+                    log("FAIL [%s] %s\n    %s" % (kind, problem, text[:2000]))
+        except KeyboardInterrupt:
+            stopped = True
+            pool.shutdown(wait=False, cancel_futures=True)
     if own_work:
         shutil.rmtree(args.work, ignore_errors=True)
-    log("fuzz_cases: %d inputs (seed %d): %s" %
-        (args.count, args.seed, ", ".join("%s %d" % kv for kv in sorted(counts.items()))))
+    log("fuzz_cases: %d inputs (seed %d)%s: %s" %
+        (done, args.seed, " (stopped before the other %d)" % (args.count - done) if stopped else "",
+         ", ".join("%s %d" % kv for kv in sorted(counts.items()))))
     log("fuzz_cases: %d failures" % len(failures))
-    return 1 if failures else 0
+    return 1 if failures else 2 if stopped else 0
 
 
 if __name__ == "__main__":

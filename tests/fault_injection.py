@@ -353,14 +353,15 @@ class Mpi(FolderState):
         self.assertNotEqual(r.returncode, 0)
         self.assertEqual(r.stderr.count("granvv: error: "), 1, r.stderr)
 
-    def stopped_under_mpirun(self, d):
-        """A two-member particle run into d under mpirun -np 2, stopped once member 1 has a
-        checkpoint; the mpirun command that ran it."""
+    def stopped_under_mpirun(self, d, members=2):
+        """A particle run of two members (or one) into d under mpirun -np 2, stopped once its
+        last member has a checkpoint; the mpirun command that ran it."""
         mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
-        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE + ["--out", str(d)],
+        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE +
+                             ["--set", f"md.ensemble={members}", "--out", str(d)],
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        self.assertTrue(wait_for(lambda: (d / ".granvv-checkpoint" / "member_1.h5").exists(),
-                                 TIMEOUT))  # member 0 first: minutes on a loaded machine
+        last = d / ".granvv-checkpoint" / f"member_{members - 1}.h5"
+        self.assertTrue(wait_for(last.exists, TIMEOUT))  # member 0 first: minutes on a loaded machine
         p.terminate()  # mpirun passes SIGTERM on; under several ranks it ends them
         p.communicate(timeout=TIMEOUT)
         return mpirun
@@ -470,6 +471,43 @@ class Mpi(FolderState):
         self.assertIn("non-finite", lines[0])
         self.assertIn("(on rank 1)", lines[0])
         self.assertTrue((c / "member_1.h5").exists())  # the checkpoint stays
+
+    def test_a_nan_arising_inside_one_lammps_subdomain_ends_every_rank(self):
+        # Two disks of a checkpoint put on one spot in a corner of the box (one subdomain, on
+        # either cut of two ranks): their gran/hooke force is 0 * inf, so a NaN arises inside
+        # LAMMPS between two samples, on the rank that holds them. LAMMPS's own check of the
+        # coordinates (at its next neighbour-list build) finds it before any sample reaches the
+        # coarse-grainer, and ends every rank through MPI_Abort: exit 1, no reason in one line
+        # and no summary (docs/outputs.md, "A non-finite particle on one rank"). Asserted here:
+        # no rank is left running, and the checkpoint and the folder's listing are as before.
+        d = self.tmp / "stopped"
+        c = d / ".granvv-checkpoint"
+        mpirun = self.stopped_under_mpirun(d, members=1)
+        with h5py.File(c / "member_0.h5", "r") as f:
+            step = int(f.attrs["steps"])
+        blocks = [c / f"member_0.step{step}.rank{k}.h5" for k in (0, 1)]
+        xs = []
+        for b in blocks:
+            with h5py.File(b, "r") as f:
+                xs.append(f["x"][()].reshape(-1, 3))
+        k, i = max(((k, i) for k in (0, 1) for i in range(len(xs[k]))),
+                   key=lambda ki: xs[ki[0]][ki[1], 0] + xs[ki[0]][ki[1], 1])
+        with h5py.File(blocks[k], "r+") as f:
+            x = xs[k]
+            x[(i + 1) % len(x)] = x[i]
+            f["x"][...] = x.reshape(-1)
+        # The checkpoint proper (the particle files beside it are continued by a resume).
+        kept = lambda: {f.name: f.read_bytes() for f in c.iterdir() if not f.name.startswith("particles")}
+        saved = kept()
+        listing = sorted(f.name for f in d.iterdir() if not f.name.startswith(".granvv-staging"))
+        begin = time.monotonic()
+        r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
+                           capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertLess(time.monotonic() - begin, 60)  # no rank waits for the other
+        self.assertEqual(r.returncode, 1, r.stderr)  # MPI_Abort's error code
+        self.assertEqual(kept(), saved)
+        self.assertEqual(sorted(f.name for f in d.iterdir()
+                                if not f.name.startswith(".granvv-staging")), listing)
 
     @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
     def test_a_write_failure_on_rank_0_ends_every_rank(self):

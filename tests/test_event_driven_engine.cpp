@@ -336,6 +336,28 @@ TEST(EventDrivenEngine, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne
   wrong.particles.x.resize(3);
   wrong.particles.v.resize(3);
   EXPECT_THROW(fresh.restore_state(wrong), std::invalid_argument);
+  // A disk due to collide with no partner, or with itself: advancing such a state indexed the
+  // disks at -1 and corrupted the heap (a damaged checkpoint's resume died of SIGSEGV). Refused.
+  const auto array_of = [](EngineState& state, const std::string& name) -> std::vector<double>& {
+    for (auto& [key, values] : state.arrays)
+      if (key == name) return values;
+    throw std::logic_error("no array " + name);
+  };
+  EngineState due = saved->engine;
+  const std::vector<double>& event = array_of(due, "event");
+  const std::vector<double>& calendar = array_of(due, "calendar_t");
+  std::size_t colliding = event.size();
+  for (std::size_t i = 0; i < event.size(); ++i)
+    if (event[i] == -1.0 && std::isfinite(calendar[i])) colliding = i;
+  ASSERT_LT(colliding, event.size());
+  for (const double partner : {-1.0, double(colliding)}) {
+    EngineState broken = due;
+    array_of(broken, "soonest_partner")[colliding] = partner;
+    EventDrivenEngine other(options_for(spec.scene));
+    EXPECT_NE(other.state_problem(broken), "") << partner;  // found before a resume runs
+    EXPECT_THROW(other.restore_state(broken), std::invalid_argument) << partner;
+  }
+  EXPECT_EQ(fresh.state_problem(due), "");
 }
 
 // A checkpoint inside a segment (the engine's check every 65536 events): one segment of 100
