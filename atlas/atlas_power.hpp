@@ -6,7 +6,7 @@
 // every particle run of the reference engine (its ensemble sizes are the particle cost axis),
 // as `granvv run` judges its comparison, and the smallest eps the comparison catches
 // (atlas/detectable_error.hpp) is found for each particle cost.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
