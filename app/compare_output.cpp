@@ -1,6 +1,7 @@
 #include "app/compare_output.hpp"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "app/md_output.hpp"
 #include "app/summary.hpp"

@@ -2,7 +2,7 @@
 // A comparison's outputs: the `compare` block of summary.json and the /compare group of
 // results.h5 (read by scripts/report.py).
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "models/compare_scene.hpp"

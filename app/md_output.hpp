@@ -3,7 +3,7 @@
 // particle-engine issue, plus the engine's own details; times in MD units sigma sqrt(m/T0)) and the
 // /md group of results.h5.
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "scene/md_scene.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // summary.json: the contract other tools read (docs/outputs.md). Numbers are numbers; results
 // a scene does not have are null.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "scene/hydro_scene.hpp"

@@ -2,6 +2,8 @@
 
 #include <H5Cpp.h>
 
+#include <nlohmann/json.hpp>
+
 #include "compare/transport_coefficients.hpp"
 #include "fields/hdf5_datasets.hpp"
 #include "scene/json_numbers.hpp"

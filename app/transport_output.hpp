@@ -2,7 +2,7 @@
 // A scene's transport measurement in the outputs (docs/outputs.md): summary.json's `transport`
 // block and results.h5's /transport group.
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "models/transport_measurement.hpp"
 #include "models/transport_pair_measurement.hpp"

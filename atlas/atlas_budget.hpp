@@ -2,7 +2,7 @@
 // The atlas's budget (docs/atlas.md, "The grid, the budget and the cache"): how much of --budget
 // each family may plan, and the atlas.json row of a setting left out for it.
 #include <algorithm>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "models/model_setting.hpp"
 

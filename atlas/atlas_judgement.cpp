@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "atlas/work_precision.hpp"
 #include "scene/json_numbers.hpp"

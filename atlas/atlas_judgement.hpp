@@ -4,7 +4,7 @@
 // model errors, the Pareto fronts, the recommendation with its next rung, the ladder timeline,
 // and the atlas.json row of each run.
 #include <map>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>

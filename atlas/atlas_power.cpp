@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "atlas/detectable_error.hpp"
 #include "compare/side_by_side.hpp"

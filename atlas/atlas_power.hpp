@@ -9,7 +9,7 @@
 // transport coefficient the same injected errors are also judged by each particle run's
 // transport fit (AtlasRun::transport): the injected hydro's factor on the coefficient
 // (models/transport_measurement.hpp, injected_coefficient_factor) against the fitted F ± sigma.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

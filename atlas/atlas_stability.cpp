@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "atlas/atlas_judgement.hpp"
 #include "atlas/stability_search.hpp"

@@ -3,7 +3,7 @@
 // each of its runs against its own finest run, and along each knob it declares
 // (ModelFamily::stability_pushes) the boundary between the last setting that holds and the first
 // that fails, found by pushing from the case's own setting and bisecting on a log scale.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

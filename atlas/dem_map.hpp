@@ -2,7 +2,7 @@
 // The DEM stability and bias map of `granvv atlas` (docs/atlas.md): the soft-contact t0, P and
 // P/(nT) against the hard disks as a function of the contact knobs.
 #include <map>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #include "hydro/linear_mode_measurement.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 
 #include "fields/constants.hpp"
@@ -9,6 +10,11 @@
 
 namespace granvv::hydro {
 
+namespace {
+
+// Complex Fourier amplitudes (nu, w, theta) of mode k, X(x) = Re(X_k e^{i 2 pi k x}), with
+// n = 1 + nu, v = T_H^{1/2} w, T = T_H (1 + theta) and T_H Haff's law at the state's time.
+// Cell fields are integrated exactly over each cell; node velocities by the midpoint rule.
 Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& closure, int k) {
   using cd = std::complex<double>;
   const double kx = 2.0 * kPi * k;
@@ -26,6 +32,8 @@ Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& cl
   }
   return Eigen::Vector3cd(2.0 * nu, 2.0 * u / std::sqrt(TH), 2.0 * theta);
 }
+
+}  // namespace
 
 MeasuredRate measure_linear_rate(const std::vector<LagrangianState>& snapshots,
                                  const Closure& closure, int k, int branch) {

@@ -1,7 +1,6 @@
 #pragma once
 // Measuring the growth rate of a small Fourier mode in a hydro run, for the comparison with
 // the dispersion relation of the homogeneous cooling state (hydro/linear_stability.hpp).
-#include <Eigen/Dense>
 #include <complex>
 #include <vector>
 
@@ -9,11 +8,6 @@
 #include "hydro/lagrangian_state.hpp"
 
 namespace granvv::hydro {
-
-// Complex Fourier amplitudes (nu, w, theta) of mode k, X(x) = Re(X_k e^{i 2 pi k x}), with
-// n = 1 + nu, v = T_H^{1/2} w, T = T_H (1 + theta) and T_H Haff's law at the state's time.
-// Cell fields are integrated exactly over each cell; node velocities by the midpoint rule.
-Eigen::Vector3cd hcs_mode_amplitudes(const LagrangianState& s, const Closure& closure, int k);
 
 // A seeded eigenmode's measured rate against the dispersion relation, the relative error it is
 // judged by (README: the resolved modes of the linear_mode scene agree within 3.6e-4; the tests'

@@ -8,7 +8,7 @@
 //
 // The families are made from the closure and engine registries (hydro/closure_registry.cpp,
 // md_bridge/particle_engine_registry.cpp), so registering a closure or an engine adds its rung.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>

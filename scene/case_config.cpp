@@ -1,5 +1,7 @@
 #include "scene/case_config.hpp"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -251,46 +253,6 @@ Value default_value(const KeySpec& spec, const std::string& source) {
   throw std::logic_error("case schema: " + spec.key + " has no default");
 }
 
-void insert_value(toml::table& root, const std::string& key, const Value& value) {
-  const std::vector<std::string> parts = split_key(key);
-  toml::table* t = &root;
-  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    toml::table* sub = t->get_as<toml::table>(parts[i]);
-    if (!sub) {
-      t->insert_or_assign(parts[i], toml::table{});
-      sub = t->get_as<toml::table>(parts[i]);
-    }
-    t = sub;
-  }
-  const std::string& leaf = parts.back();
-  std::visit(
-      [&](const auto& v) {
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, long long>) {
-          t->insert_or_assign(leaf, static_cast<std::int64_t>(v));
-        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
-          toml::array arr;
-          for (const double x : v) arr.push_back(x);
-          t->insert_or_assign(leaf, std::move(arr));
-        } else if constexpr (std::is_same_v<T, std::vector<long long>>) {
-          toml::array arr;
-          for (const long long x : v) arr.push_back(static_cast<std::int64_t>(x));
-          t->insert_or_assign(leaf, std::move(arr));
-        } else if constexpr (std::is_same_v<T, RealTable>) {
-          toml::table named;
-          for (const auto& [name, x] : v) named.insert_or_assign(name, x);
-          t->insert_or_assign(leaf, std::move(named));
-        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
-          toml::array arr;
-          for (const std::string& x : v) arr.push_back(x);
-          t->insert_or_assign(leaf, std::move(arr));
-        } else {
-          t->insert_or_assign(leaf, v);
-        }
-      },
-      value);
-}
-
 // ---------------------------------------------------------------------------------------------
 // --set KEY=VALUE
 // ---------------------------------------------------------------------------------------------
@@ -524,9 +486,6 @@ CaseConfig CaseConfig::from_string(std::string_view toml_text, std::string sourc
            violation->message);
     }
   }
-
-  for (const KeySpec& spec : case_schema())
-    insert_value(config.table_, spec.key, config.values_.at(spec.key));
   return config;
 }
 

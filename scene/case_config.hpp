@@ -8,8 +8,6 @@
 // Asking a CaseConfig for a key that is not in the schema, or with the accessor of another type,
 // is a programming error: std::logic_error.
 
-#include <toml++/toml.h>
-
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -72,8 +70,6 @@ class CaseConfig {
   // ("physics.K", "0.0004") for every key, sorted by key; values in TOML syntax (strings quoted),
   // i.e. exactly what `--set KEY=VALUE` accepts.
   std::vector<std::pair<std::string, std::string>> flattened() const;
-  // The resolved case as a toml++ table (reals are floating-point nodes even if given as integers).
-  const toml::table& table() const { return table_; }
 
  private:
   CaseConfig() = default;
@@ -85,7 +81,6 @@ class CaseConfig {
   std::vector<std::string> sets_;
   std::map<std::string, Value, std::less<>> values_;
   std::map<std::string, std::string, std::less<>> origins_;
-  toml::table table_;
 };
 
 // Refuses a key that a particle engine or a closure declares as its own (key_owner) when the

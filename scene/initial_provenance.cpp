@@ -1,5 +1,7 @@
 #include "scene/initial_provenance.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "scene/input_fingerprint.hpp"
 
 namespace granvv::app {

@@ -2,7 +2,7 @@
 // Provenance of a scene's initial state: the files its initial condition reads (a table, a
 // previous run's results.h5), each with its SHA-256, for summary.json's "initial" block.
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "hydro/initial_conditions.hpp"

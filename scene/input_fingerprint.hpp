@@ -5,7 +5,7 @@
 // inputs it was made from; where the fingerprint of the inputs now differs, it is not a result
 // of them (docs/outputs.md, "Fingerprints of the inputs").
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <set>
 #include <string>
 #include <string_view>
