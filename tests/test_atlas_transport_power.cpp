@@ -1,7 +1,8 @@
 // The atlas's comparison power judged by the transport fit (docs/atlas.md, "Comparison power"):
 // the catch rule on synthetic fit results, the factor an injection moves the fitted coefficient
 // by, and `granvv atlas` on a tiny shear wave of event-driven disks (real engine, real CLI): the
-// new atlas.json keys, their verdicts against the rule, and a cache entry without its fit run again.
+// new atlas.json keys, their verdicts against the rule, and a cache entry without its fit run
+// again.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "scene/case_config.hpp"
 #include "scene/hydro_scene.hpp"
 #include "support/cli_runner.hpp"
+#include "support/small_shear_wave.hpp"
 
 namespace granvv::testing {
 namespace {
@@ -72,51 +74,18 @@ TEST(AtlasTransportPower, InjectedFactorOnTheFittedCoefficient) {
       1.0);
 }
 
-// A k = 1 shear wave v_y = 0.1 sin 2 pi x at r = 0.9 (K = 0.08, phi = 0.02), about 280 disks
-// a member to t = 444 (as tests/test_transport_cli.cpp); the soft contacts of the LAMMPS
-// ladder, which the atlas runs beside, at their cheapest (a few seconds in all).
-constexpr const char* kShearWave = R"toml(
-[case]
-name = "tiny_shear_wave"
-[physics]
-K = 0.08
-q = 0.05
-[initial]
-type = "expression"
-transverse_velocity = "0.1*sin(2*pi*x)"
-[hydro]
-transverse_velocity = true
-cells = 50
-[md]
-enabled = true
-engine = "event_driven"
-area_fraction = 0.02
-box_width = 20.0
-seed = 3
-ensemble = 2
-t_end = 444.0
-sample_interval = 47.0
-output_times = [0.0, 111.0, 222.0, 333.0, 444.0]
-bins = 16
-checkpoint_interval = 0.0
-max_overlap = 0.1
-steps_per_contact = 10
-[compare]
-enabled = true
-closures = ["dilute"]
-transport = "shear_viscosity"
-transport_field = "v_y"
-transport_phase = "sin"
-)toml";
-
 TEST(AtlasTransportPower, AtlasJudgesInjectedErrorsByTheFit) {
   const fs::path dir = fresh_directory("atlas_transport_power");
   const fs::path file = dir / "tiny_shear_wave.toml";
-  std::ofstream(file) << kShearWave;
+  std::ofstream(file) << kSmallShearWave;
   // eps = 1e-4 moves eta by far less than the fit's error; eps = 20 (eta times 21) by dozens.
   const std::string args =
       "atlas " + shell_quote(file.string()) + " --quiet --no-report --jobs 1 --out " +
       shell_quote((dir / "atlas").string()) +
+      // The small scene with 2 members on 50 cells, and the LAMMPS ladder's soft contacts, which
+      // the atlas runs beside, at their cheapest (a few seconds in all).
+      " --set md.ensemble=2 --set hydro.cells=50 --set md.max_overlap=0.1"
+      " --set md.steps_per_contact=10 --set 'compare.closures=[\"dilute\"]'"
       " --set 'atlas.ensembles=[2,8]' --set 'atlas.injected_errors=[0.0001,20]'"
       " --set 'atlas.cells=[50]' --set 'atlas.step_factors=[1]'"
       " --set 'atlas.max_overlaps=[0.1]' --set 'atlas.steps_per_contacts=[10]' --budget 300";

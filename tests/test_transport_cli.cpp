@@ -14,45 +14,13 @@
 
 #include "fields/hdf5_datasets.hpp"
 #include "support/cli_runner.hpp"
+#include "support/small_shear_wave.hpp"
 
 namespace granvv::testing {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-// A k = 1 shear wave v_y = 0.1 sin 2 pi x in a cooling gas at r = 0.9 (K = 0.08, phi = 0.02).
-constexpr const char* kShearWave = R"toml(
-[case]
-name = "small_shear_wave"
-[physics]
-K = 0.08
-q = 0.05
-[initial]
-type = "expression"
-transverse_velocity = "0.1*sin(2*pi*x)"
-[hydro]
-transverse_velocity = true
-cells = 100
-[md]
-enabled = true
-engine = "event_driven"
-area_fraction = 0.02
-box_width = 20.0
-seed = 3
-ensemble = 4
-t_end = 444.0
-sample_interval = 47.0
-output_times = [0.0, 111.0, 222.0, 333.0, 444.0]
-bins = 16
-checkpoint_interval = 0.0
-[compare]
-enabled = true
-closures = ["dilute", "enskog"]
-transport = "shear_viscosity"
-transport_field = "v_y"
-transport_phase = "sin"
-)toml";
 
 // A k = 1 sound wave v_x = 0.15 sin 2 pi x at r = 0.9, the same scales, with garzo_dufty's mu.
 constexpr const char* kSoundWave = R"toml(
@@ -90,7 +58,7 @@ transport_signals = ["v_x:sin", "n:cos", "T:cos"]
 
 fs::path write_case(const fs::path& dir) {
   const fs::path file = dir / "small_shear_wave.toml";
-  std::ofstream(file) << kShearWave;
+  std::ofstream(file) << kSmallShearWave;
   return file;
 }
 
