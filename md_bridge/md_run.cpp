@@ -129,6 +129,16 @@ void place_sampled_particles(const MdRunSpec& spec, ParticleEngine& engine) {
   });
 }
 
+// The box energies of a sample as H5MD observables (under the HDF5 lock: members may write
+// from several threads).
+void append_energy_observables(H5mdWriter& h5md, long long step, double t, const BoxEnergies& e) {
+  const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
+  h5md.append_observable("thermal_energy", step, t, e.thermal);
+  h5md.append_observable("kinetic_energy_x", step, t, e.kinetic_macro_x);
+  h5md.append_observable("kinetic_energy_y", step, t, e.kinetic_macro_y);
+  h5md.append_observable("total_energy", step, t, e.kinetic_total);
+}
+
 }  // namespace
 
 MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
@@ -205,14 +215,7 @@ MdRunResult run_md(const MdRunSpec& spec, ParticleEngine& engine,
       f.label = "output";
       result.fields.snapshots.push_back(std::move(f));
     }
-    if (h5md) {
-      const std::lock_guard<std::recursive_mutex> lock(h5::library_mutex());
-      const long long step = engine.frame_step();
-      h5md->append_observable("thermal_energy", step, t, e.thermal);
-      h5md->append_observable("kinetic_energy_x", step, t, e.kinetic_macro_x);
-      h5md->append_observable("kinetic_energy_y", step, t, e.kinetic_macro_y);
-      h5md->append_observable("total_energy", step, t, e.kinetic_total);
-    }
+    if (h5md) append_energy_observables(*h5md, engine.frame_step(), t, e);
     write_frame(t);
   };
   const auto& outputs = spec.output_times;
