@@ -12,6 +12,25 @@
 #include <unordered_map>
 #include <utility>
 
+// Debian's LAMMPS (20220106, built without C++ exceptions) ends a run it cannot continue (its
+// Error::one: a coordinate that is not finite or left the box, a lost atom) through MPI_Abort,
+// after writing its reason to its log, which only world rank 0 keeps. The rank that met the
+// error may be another, so the reason would be lost and the job end without a line. This
+// definition comes before the MPI library's (the MPI standard's profiling interface): it
+// writes one line naming the rank, then aborts through PMPI_Abort. granvv itself never calls
+// MPI_Abort.
+extern "C" int MPI_Abort(MPI_Comm comm, int errorcode) {
+  int rank = -1;
+  PMPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::fprintf(stderr,
+               "granvv: error: LAMMPS ended the run on rank %d (its own check failed: a particle "
+               "coordinate not finite or outside the box, e.g. from overlapping disks; rank 0's "
+               "LAMMPS log has the message when rank 0 met it)\n",
+               rank);
+  std::fflush(stderr);
+  return PMPI_Abort(comm, errorcode);
+}
+
 namespace granvv::md {
 
 // ---------------------------------------------------------------------------------------------

@@ -477,9 +477,10 @@ class Mpi(FolderState):
         # either cut of two ranks): their gran/hooke force is 0 * inf, so a NaN arises inside
         # LAMMPS between two samples, on the rank that holds them. LAMMPS's own check of the
         # coordinates (at its next neighbour-list build) finds it before any sample reaches the
-        # coarse-grainer, and ends every rank through MPI_Abort: exit 1, no reason in one line
-        # and no summary (docs/outputs.md, "A non-finite particle on one rank"). Asserted here:
-        # no rank is left running, and the checkpoint and the folder's listing are as before.
+        # coarse-grainer, and ends every rank through MPI_Abort: exit 1 and no summary, with one
+        # line naming LAMMPS and the rank (docs/outputs.md, "A non-finite particle on one
+        # rank"). Asserted here: that line, no rank left running, and the checkpoint and the
+        # folder's listing as before.
         d = self.tmp / "stopped"
         c = d / ".granvv-checkpoint"
         mpirun = self.stopped_under_mpirun(d, members=1)
@@ -505,6 +506,7 @@ class Mpi(FolderState):
                            capture_output=True, text=True, timeout=TIMEOUT)
         self.assertLess(time.monotonic() - begin, 60)  # no rank waits for the other
         self.assertEqual(r.returncode, 1, r.stderr)  # MPI_Abort's error code
+        self.assertRegex(r.stderr, r"granvv: error: LAMMPS ended the run on rank [01] ")
         self.assertEqual(kept(), saved)
         self.assertEqual(sorted(f.name for f in d.iterdir()
                                 if not f.name.startswith(".granvv-staging")), listing)
