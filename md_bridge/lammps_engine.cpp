@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "md_bridge/disk_gas.hpp"
+#include "md_bridge/disk_overlap.hpp"
 #include "md_bridge/particle_blocks.hpp"
 #include "md_bridge/restitution_calibration.hpp"
 
@@ -193,7 +194,7 @@ EngineState LammpsEngine::save_state(bool with_particles) {
   return state;
 }
 
-void LammpsEngine::restore_state(const EngineState& state) {
+void LammpsEngine::restore_numbers(const EngineState& state) {
   std::map<std::string, double> number;
   for (const auto& [name, value] : state.numbers) number[name] = value;
   const auto get = [&](const std::string& name) {
@@ -216,6 +217,44 @@ void LammpsEngine::restore_state(const EngineState& state) {
   contact_ = contact_for_speed(speed_);
   if (runs_ > 0) first_initial_ = contact_for_speed(first_initial_speed_);
   if (runs_ > 1) first_final_ = contact_for_speed(first_final_speed_);
+}
+
+std::string LammpsEngine::state_problem(const EngineState& state) const {
+  LammpsEngine probe(options_);
+  try {
+    probe.restore_numbers(state);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  const auto& p = state.particles;
+  if (p.x.empty() || state.particle_blocks != 1) return "";  // a block alone: checked whole
+  if (p.x.size() != 3 * std::size_t(options_.particles) || p.v.size() != p.x.size())
+    return std::to_string(p.x.size() / 3) + " particles for a scene of " +
+           std::to_string(options_.particles);
+  // The contact is made so that a head-on collision at the fastest relative speed present
+  // presses two disks md.max_overlap into each other, and a Hookean contact's deepest overlap
+  // grows only linearly with the approach speed: an overlap kDamagedOverlap times deeper would
+  // need a collision kDamagedOverlap times faster than any in the run, and two disks on one
+  // spot make the contact force 0 * inf (LAMMPS would end the run on the rank holding them).
+  try {
+    const DiskOverlap o = deepest_overlap(p.x, options_.box_length, options_.box_width);
+    if (o.depth > kDamagedOverlap * options_.max_overlap) {
+      std::ostringstream what;
+      what << "disks " << o.first + 1 << " and " << o.second + 1 << " overlap by " << o.depth
+           << " sigma, more than " << kDamagedOverlap
+           << " x md.max_overlap = " << kDamagedOverlap * options_.max_overlap
+           << "; no collision of the run presses "
+           << "disks so deep";
+      return what.str();
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void LammpsEngine::restore_state(const EngineState& state) {
+  restore_numbers(state);
   lmp_.reset();
   const auto& p = state.particles;
   if (p.x.empty() && state.particle_blocks == 1) return;  // between runs: set_up starts one

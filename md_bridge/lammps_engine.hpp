@@ -82,6 +82,10 @@ class LammpsEngine final : public ParticleEngine {
   // are made again from their speeds (contact_for_speed is deterministic).
   EngineState save_state(bool with_particles) override;
   void restore_state(const EngineState& state) override;
+  // Its numbers as restore_state reads them, its count of particles, and how deep its disks
+  // overlap (deeper than kDamagedOverlap x md.max_overlap: refused), checked on the whole state
+  // (a checkpoint saved in blocks is checked with every block).
+  std::string state_problem(const EngineState& state) const override;
   EngineCost cost() const override;
   // stiffness_changes (all runs), contact_initial and contact_final ({kn, gamma_n, dt}, of
   // the first run).
@@ -101,6 +105,8 @@ class LammpsEngine final : public ParticleEngine {
   int stiffness_changes() const { return changes_; }  // in the current run
 
   static constexpr double kCalibrationSpeed = 10.0;
+  // An overlap this many times md.max_overlap is not one a run made (state_problem).
+  static constexpr double kDamagedOverlap = 5.0;
 
  private:
   LammpsEngineOptions options_;
@@ -109,6 +115,9 @@ class LammpsEngine final : public ParticleEngine {
   // A fresh LAMMPS instance on the engine's communicator (the old one closed first) with the
   // empty box: this rank's subdomain (lo, hi), for the particles it is to create.
   std::pair<std::array<double, 2>, std::array<double, 2>> open_box();
+  // The clock, counts, speeds and contacts of a saved state (std::invalid_argument for a
+  // missing or non-finite number, or a contact that cannot be made).
+  void restore_numbers(const EngineState& state);
   // The disks (add_disks: `total` over all ranks) at contact_, and the stress computes.
   void fill_box(const ParticleSample& sample, long long total);
   void add_stress_computes();  // and the thermo line that tallies them

@@ -23,8 +23,9 @@ extern "C" int MPI_Abort(MPI_Comm comm, int errorcode) {
   int rank = -1;
   PMPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::fprintf(stderr,
-               "granvv: error: LAMMPS ended the run on rank %d (its own check failed: a particle "
-               "coordinate not finite or outside the box, e.g. from overlapping disks; rank 0's "
+               "granvv: error: LAMMPS ended the run on rank %d (its own check failed, for example "
+               "a particle "
+               "coordinate not finite or outside the box; rank 0's "
                "LAMMPS log has the message when rank 0 met it)\n",
                rank);
   std::fflush(stderr);

@@ -215,12 +215,25 @@ MemberCheckpoint read_state(const fs::path& file, const fs::path& out_dir, int m
                                " MPI ranks, and this run has " + std::to_string(ranks) +
                                ": resume it under mpirun -np " + std::to_string(blocks));
     s.engine.particle_blocks = blocks;
-    const fs::path own = block_file(out_dir, member, r.steps, rank);
-    const H5::H5File block(own.string(), H5F_ACC_RDONLY);
-    const H5::Group block_root = block.openGroup("/");
-    s.engine.first_row = count_attribute(block_root, "first_row");
-    s.engine.particles.x = h5::read_doubles(block_root, "x").values;
-    s.engine.particles.v = h5::read_doubles(block_root, "v").values;
+    // Every rank's block, in ID order, for the checks of the whole state; this rank's is its own.
+    for (int k = 0; k < blocks; ++k) {
+      const fs::path path = block_file(out_dir, member, r.steps, k);
+      const H5::H5File block(path.string(), H5F_ACC_RDONLY);
+      const H5::Group block_root = block.openGroup("/");
+      const long long first_row = count_attribute(block_root, "first_row");
+      std::vector<double> x = h5::read_doubles(block_root, "x").values;
+      std::vector<double> v = h5::read_doubles(block_root, "v").values;
+      if (3 * first_row != (long long)c.all_blocks.x.size())
+        throw std::runtime_error(path.string() + " begins at row " + std::to_string(first_row) +
+                                 " where the blocks before it end at row " +
+                                 std::to_string(c.all_blocks.x.size() / 3));
+      if (k == rank) {
+        s.engine.first_row = first_row;
+        s.engine.particles = {x, v};
+      }
+      c.all_blocks.x.insert(c.all_blocks.x.end(), x.begin(), x.end());
+      c.all_blocks.v.insert(c.all_blocks.v.end(), v.begin(), v.end());
+    }
   }
   return c;
 }
@@ -397,7 +410,13 @@ void check_member_checkpoints(const std::vector<MemberCheckpoint>& checkpoints,
     if (c.missing) continue;
     std::string problem = state_problem(c, spec);
     if (problem.empty() && !c.finished) {
-      const std::string refused = engine.state_problem(c.state.engine);
+      md::EngineState whole = c.state.engine;
+      if (whole.particle_blocks > 1) {
+        whole.particles = c.all_blocks;
+        whole.particle_blocks = 1;
+        whole.first_row = 0;
+      }
+      const std::string refused = engine.state_problem(whole);
       if (!refused.empty()) problem = "a state the engine refuses (" + refused + ")";
     }
     if (!problem.empty())

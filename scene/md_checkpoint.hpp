@@ -51,6 +51,9 @@ struct MemberCheckpoint {
   md::MdRunState state;
   double particle_part_wall_seconds = 0.0;  // wall time of the particle part when it was saved
   bool missing = false;  // no checkpoint of this member (members that run apart leave gaps)
+  // Saved in blocks (state.engine.particle_blocks > 1): every rank's block in ID order, for the
+  // checks of the whole state (state.engine holds this rank's block alone).
+  md::ParticleFrame all_blocks;
 };
 
 // Writes member m's checkpoint, replacing the previous one only once it is complete on the disk.

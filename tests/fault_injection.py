@@ -472,44 +472,44 @@ class Mpi(FolderState):
         self.assertIn("(on rank 1)", lines[0])
         self.assertTrue((c / "member_1.h5").exists())  # the checkpoint stays
 
-    def test_a_nan_arising_inside_one_lammps_subdomain_ends_every_rank(self):
-        # Two disks of a checkpoint put on one spot in a corner of the box (one subdomain, on
-        # either cut of two ranks): their gran/hooke force is 0 * inf, so a NaN arises inside
-        # LAMMPS between two samples, on the rank that holds them. LAMMPS's own check of the
-        # coordinates (at its next neighbour-list build) finds it before any sample reaches the
-        # coarse-grainer, and ends every rank through MPI_Abort: exit 1 and no summary, with one
-        # line naming LAMMPS and the rank (docs/outputs.md, "A non-finite particle on one
-        # rank"). Asserted here: that line, no rank left running, and the checkpoint and the
+    def test_disks_pressed_onto_one_spot_are_refused_before_the_resume(self):
+        # Two disks of a LAMMPS checkpoint saved in blocks by two ranks put on one spot, first
+        # within one rank's block, then one from each block. Their gran/hooke force would be
+        # 0 * inf, a NaN inside LAMMPS on the rank holding them, which Debian's LAMMPS ends
+        # through MPI_Abort. The resume must refuse the state before the run: exit 2 on every
+        # rank, one line naming the member, the disks and the overlap, the checkpoint and the
         # folder's listing as before.
-        d = self.tmp / "stopped"
-        c = d / ".granvv-checkpoint"
-        mpirun = self.stopped_under_mpirun(d, members=1)
-        with h5py.File(c / "member_0.h5", "r") as f:
-            step = int(f.attrs["steps"])
-        blocks = [c / f"member_0.step{step}.rank{k}.h5" for k in (0, 1)]
-        xs = []
-        for b in blocks:
-            with h5py.File(b, "r") as f:
-                xs.append(f["x"][()].reshape(-1, 3))
-        k, i = max(((k, i) for k in (0, 1) for i in range(len(xs[k]))),
-                   key=lambda ki: xs[ki[0]][ki[1], 0] + xs[ki[0]][ki[1], 1])
-        with h5py.File(blocks[k], "r+") as f:
-            x = xs[k]
-            x[(i + 1) % len(x)] = x[i]
-            f["x"][...] = x.reshape(-1)
-        # The checkpoint proper (the particle files beside it are continued by a resume).
-        kept = lambda: {f.name: f.read_bytes() for f in c.iterdir() if not f.name.startswith("particles")}
-        saved = kept()
-        listing = sorted(f.name for f in d.iterdir() if not f.name.startswith(".granvv-staging"))
-        begin = time.monotonic()
-        r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
-                           capture_output=True, text=True, timeout=TIMEOUT)
-        self.assertLess(time.monotonic() - begin, 60)  # no rank waits for the other
-        self.assertEqual(r.returncode, 1, r.stderr)  # MPI_Abort's error code
-        self.assertRegex(r.stderr, r"granvv: error: LAMMPS ended the run on rank [01] ")
-        self.assertEqual(kept(), saved)
-        self.assertEqual(sorted(f.name for f in d.iterdir()
-                                if not f.name.startswith(".granvv-staging")), listing)
+        for case, (k, i) in (("one block", (0, 1)), ("two blocks", (1, 0))):
+            with self.subTest(case):
+                d = self.tmp / case.replace(" ", "_")
+                c = d / ".granvv-checkpoint"
+                mpirun = self.stopped_under_mpirun(d, members=1)
+                with h5py.File(c / "member_0.h5", "r") as f:
+                    step = int(f.attrs["steps"])
+                blocks = [c / f"member_0.step{step}.rank{b}.h5" for b in (0, 1)]
+                xs = []
+                for b in blocks:
+                    with h5py.File(b, "r") as f:
+                        xs.append(f["x"][()].reshape(-1, 3))
+                xs[k][i] = xs[0][0]  # disk i of block k onto the first disk of block 0
+                for b, x in zip(blocks, xs):
+                    with h5py.File(b, "r+") as f:
+                        f["x"][...] = x.reshape(-1)
+                kept = lambda: {f.name: f.read_bytes() for f in c.iterdir()}
+                saved = kept()
+                listing = sorted(f.name for f in d.iterdir() if not f.name.startswith(".granvv-staging"))
+                begin = time.monotonic()
+                r = subprocess.run(mpirun + ["resume", str(d), "--quiet", "--no-report"],
+                                   capture_output=True, text=True, timeout=TIMEOUT)
+                self.assertLess(time.monotonic() - begin, 60)  # no rank waits for the other
+                self.assertEqual(r.returncode, 2, r.stderr)
+                lines = [l for l in r.stderr.splitlines() if l.startswith("granvv: error: ")]
+                self.assertEqual(len(lines), 1, r.stderr)
+                self.assertRegex(lines[0], r"member 0 .*disks \d+ and \d+ overlap by 1 sigma")
+                self.assertIn("md.max_overlap", lines[0])
+                self.assertEqual(kept(), saved)
+                self.assertEqual(sorted(f.name for f in d.iterdir()
+                                        if not f.name.startswith(".granvv-staging")), listing)
 
     @unittest.skipUnless(is_root(), "mounts a small tmpfs (root only)")
     def test_a_write_failure_on_rank_0_ends_every_rank(self):

@@ -13,6 +13,7 @@
 #include <optional>
 #include <variant>
 
+#include "md_bridge/disk_overlap.hpp"
 #include "md_bridge/lammps_engine.hpp"
 #include "md_bridge/md_run.hpp"
 #include "md_bridge/particle_blocks.hpp"
@@ -157,6 +158,67 @@ TEST(MdRun, ARunContinuedFromItsCheckpointMatchesTheUninterruptedOne) {
   wrong.particles.x.resize(3);
   wrong.particles.v.resize(3);
   EXPECT_THROW(fresh.restore_state(wrong), std::invalid_argument);
+}
+
+// A resume asks the engine whether it would continue a saved state (scene/md_checkpoint.hpp).
+// Every state a cooling run saves passes, with its disks never pressed deeper than the contact
+// makes them (md.max_overlap at the fastest relative speed present; measured here: under 1 x);
+// a state whose disks are pressed kDamagedOverlap times deeper, or onto one spot, is refused
+// with the disks named, and so is one without its numbers.
+TEST(MdRun, AStateWithDisksPressedDeeperThanAnyCollisionIsRefused) {
+  MdRunSpec spec = small_cooling_gas(8.0);
+  spec.scene.restitution = 0.5;
+  const LammpsEngineOptions options = engine_options(spec);
+  std::vector<MdRunState> saved;
+  MdCheckpoints checkpoints;
+  checkpoints.due = [] { return true; };
+  checkpoints.save = [&](const MdRunState& state) { saved.push_back(state); };
+  LammpsEngine engine(options);
+  ASSERT_EQ(run_md(spec, engine, nullptr, checkpoints).status, "ok");
+  ASSERT_GE(saved.size(), 5u);
+  if (saved.front().engine.particle_blocks > 1) GTEST_SKIP() << "blocks: checked whole by a resume";
+  double deepest = 0.0;
+  for (const auto& state : saved) {
+    EXPECT_EQ(engine.state_problem(state.engine), "") << "t = " << state.t;
+    deepest = std::max(
+        deepest,
+        deepest_overlap(state.engine.particles.x, options.box_length, options.box_width).depth);
+  }
+  EXPECT_LT(deepest, options.max_overlap);
+  EXPECT_GT(deepest, 0.0);  // disks in contact were saved
+
+  // Disks 1 and 2 moved to a spot with no other disk within 3 sigma, `depth` into each other.
+  const EngineState& good = saved.back().engine;
+  const auto pressed = [&](double depth) {
+    EngineState s = good;
+    auto& x = s.particles.x;
+    for (double cx = -0.5 * options.box_length + 3; cx < 0.5 * options.box_length - 3; cx += 1) {
+      for (double cy = -0.5 * options.box_width + 3; cy < 0.5 * options.box_width - 3; cy += 1) {
+        bool empty = true;
+        for (std::size_t i = 6; i < x.size() && empty; i += 3)
+          empty = std::hypot(x[i] - cx, x[i + 1] - cy) > 3.0;
+        if (!empty) continue;
+        x[0] = cx, x[1] = cy, x[3] = cx + 1.0 - depth, x[4] = cy;
+        return s;
+      }
+    }
+    ADD_FAILURE() << "no empty spot";
+    return s;
+  };
+  EXPECT_EQ(
+      engine.state_problem(pressed(0.8 * LammpsEngine::kDamagedOverlap * options.max_overlap)), "");
+  const std::string deep =
+      engine.state_problem(pressed(1.2 * LammpsEngine::kDamagedOverlap * options.max_overlap));
+  EXPECT_NE(deep.find("disks 1 and 2 overlap by 0.06 sigma"), std::string::npos) << deep;
+  EXPECT_NE(deep.find("md.max_overlap"), std::string::npos) << deep;
+  const std::string one_spot = engine.state_problem(pressed(1.0));
+  EXPECT_NE(one_spot.find("disks 1 and 2 overlap by 1 sigma"), std::string::npos) << one_spot;
+  EngineState without = good;
+  without.numbers.erase(without.numbers.begin());
+  EXPECT_NE(engine.state_problem(without).find("without a finite 't'"), std::string::npos);
+  EngineState fewer = good;
+  fewer.particles.x.resize(fewer.particles.x.size() - 3);
+  EXPECT_NE(engine.state_problem(fewer).find("599 particles"), std::string::npos);
 }
 
 TEST(MdRun, AdaptiveStiffnessSoftensAtFixedRestitution) {
