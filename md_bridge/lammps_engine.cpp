@@ -243,8 +243,7 @@ std::string LammpsEngine::state_problem(const EngineState& state) const {
       what << "disks " << o.first + 1 << " and " << o.second + 1 << " overlap by " << o.depth
            << " sigma, more than " << kDamagedOverlap
            << " x md.max_overlap = " << kDamagedOverlap * options_.max_overlap
-           << "; no collision of the run presses "
-           << "disks so deep";
+           << "; no collision of the run presses disks so deep";
       return what.str();
     }
   } catch (const std::exception& e) {

@@ -24,9 +24,8 @@ extern "C" int MPI_Abort(MPI_Comm comm, int errorcode) {
   PMPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::fprintf(stderr,
                "granvv: error: LAMMPS ended the run on rank %d (its own check failed, for example "
-               "a particle "
-               "coordinate not finite or outside the box; rank 0's "
-               "LAMMPS log has the message when rank 0 met it)\n",
+               "a particle coordinate not finite or outside the box; rank 0's LAMMPS log has the "
+               "message when rank 0 met it)\n",
                rank);
   std::fflush(stderr);
   return PMPI_Abort(comm, errorcode);
