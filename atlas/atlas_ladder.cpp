@@ -24,9 +24,10 @@ void plan(const AtlasScene& scene, const ModelFamily& family, const AtlasRun& pi
     double estimate;
   };
   std::vector<Planned> grid;
+  const ModelFamily::CostEstimate estimate = family.estimate(pilot, scene);
   for (auto& s : family.grid(scene)) {
     const bool first = family.plan_first(s, scene);
-    const double e = family.estimate(s, pilot, scene);
+    const double e = estimate(s);
     grid.push_back({std::move(s), first, e});
   }
   std::stable_sort(grid.begin(), grid.end(), [](const Planned& a, const Planned& b) {

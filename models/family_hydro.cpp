@@ -88,10 +88,13 @@ class HydroFamily : public ModelFamily {
   }
   // The work is cells times steps, and the steps grow as the cells where the sound limit binds
   // and as 1/factor.
-  double estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                  const AtlasScene& scene) const override {
-    const double c = s.knob(kCells) / scene.case_hydro->cells;
-    return std::max(pilot.cost.wall_seconds, 1e-3) * std::max(c * c, c) / s.knob(kStepFactor);
+  CostEstimate estimate(const AtlasRun& pilot, const AtlasScene& scene) const override {
+    const double seconds = std::max(pilot.cost.wall_seconds, 1e-3);
+    const double case_cells = scene.case_hydro->cells;
+    return [seconds, case_cells](const AtlasSetting& s) {
+      const double c = s.knob(kCells) / case_cells;
+      return seconds * std::max(c * c, c) / s.knob(kStepFactor);
+    };
   }
   bool finer(const AtlasSetting& a, const AtlasSetting& b) const override {
     return a.knob(kCells) > b.knob(kCells) ||

@@ -161,13 +161,16 @@ std::vector<AtlasSetting> ParticleFamily::grid(const AtlasScene& scene) const {
   return grid;
 }
 
-double ParticleFamily::estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                                const AtlasScene& scene) const {
-  const double work = estimated_work(scene, s);
+ModelFamily::CostEstimate ParticleFamily::estimate(const AtlasRun& pilot,
+                                                   const AtlasScene& scene) const {
+  const double seconds = std::max(pilot.cost.wall_seconds, 1e-3);
   const double pilot_work = estimated_work(scene, pilot.setting);
-  // A setting the scene refuses is refused at once, before it costs anything.
-  if (!(work > 0.0) || !(pilot_work > 0.0)) return 0.0;
-  return std::max(pilot.cost.wall_seconds, 1e-3) * work / pilot_work;
+  return [&scene, seconds, pilot_work](const AtlasSetting& s) {
+    const double work = estimated_work(scene, s);
+    // A setting the scene refuses is refused at once, before it costs anything.
+    if (!(work > 0.0) || !(pilot_work > 0.0)) return 0.0;
+    return seconds * work / pilot_work;
+  };
 }
 
 double ParticleFamily::estimated_work(const AtlasScene& scene, const AtlasSetting& s) {

@@ -8,6 +8,7 @@
 //
 // The families are made from the closure and engine registries (hydro/closure_registry.cpp,
 // md_bridge/particle_engine_registry.cpp), so registering a closure or an engine adds its rung.
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -77,9 +78,12 @@ class ModelFamily {
   // Whether the setting is planned before the rest of the grid (the rest go cheapest first): a
   // discretised family's finest corner (its reference), an engine's own contact.
   virtual bool plan_first(const AtlasSetting&, const AtlasScene&) const { return false; }
-  // A setting's estimated wall seconds from the pilot's.
-  virtual double estimate(const AtlasSetting&, const AtlasRun& pilot, const AtlasScene&) const {
-    return pilot.cost.wall_seconds;
+  // A setting's estimated wall seconds from the pilot's. The family works out what it needs of
+  // the pilot once, when the atlas plans its grid; the estimate refers to the scene, which must
+  // outlive it.
+  using CostEstimate = std::function<double(const AtlasSetting&)>;
+  virtual CostEstimate estimate(const AtlasRun& pilot, const AtlasScene&) const {
+    return [seconds = pilot.cost.wall_seconds](const AtlasSetting&) { return seconds; };
   }
   // Whether a is a finer setting than b: the finest finished run is the family's own reference.
   virtual bool finer(const AtlasSetting&, const AtlasSetting&) const { return false; }

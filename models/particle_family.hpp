@@ -28,9 +28,9 @@ class ParticleFamily : public ModelFamily {
   // The ensemble sizes of atlas.ensembles, else 1, 2, 4, ... 512.
   std::vector<AtlasSetting> grid(const AtlasScene& scene) const override;
   // The pilot's wall time scaled by the engine's own work estimate of each setting's resolved
-  // case (md_bridge/particle_work.hpp): members, particles, and the contact's steps.
-  double estimate(const AtlasSetting& s, const AtlasRun& pilot,
-                  const AtlasScene& scene) const override;
+  // case (md_bridge/particle_work.hpp): members, particles, and the contact's steps. The pilot's
+  // work is estimated once.
+  CostEstimate estimate(const AtlasRun& pilot, const AtlasScene& scene) const override;
   // The larger ensemble.
   bool finer(const AtlasSetting& a, const AtlasSetting& b) const override;
   std::vector<std::string> overrides(const AtlasScene& scene, const AtlasSetting& s) const override;
