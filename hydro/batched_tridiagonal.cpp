@@ -3,6 +3,8 @@
 #include <cstring>
 #include <limits>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
 namespace {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
@@ -26,6 +28,7 @@ LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     throw std::invalid_argument("periodic tridiagonal system needs at least 3 unknowns");
 }
 
+GRANVV_WIDE_LOOPS
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
                                 double dt, const std::vector<double>& reference_dv,
@@ -81,6 +84,7 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   if (density_heat_flux) node_coupling(cell.mu, out.density_heat_coupling);
 }
 
+GRANVV_WIDE_LOOPS
 bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
                                  const FrozenCoefficients& c, double dt, PassFields& to) {
   const int n = n_;
