@@ -45,12 +45,61 @@ struct Lanes {
   }
 };
 
+// The forward half of a solve, L y = b in place on x, two rows per step. Row by row,
+// y_i = b_i - l_{i-1} y_{i-1} is one chain of dependent multiply-adds; two rows at once,
+// y_i = (b_i - l_{i-1} b_{i-1}) + l_{i-1} l_{i-2} y_{i-2}, are two chains (even and odd rows, the
+// two lanes of y) of half the length. The spike row is a sum, also split in two. start() needs
+// the factors' rows 0 and 1, each step() the rows up to its second one, finish() all of them;
+// the factorisation runs it behind its own sweep (factorize_periodic's first_rhs).
+struct ForwardSweep {
+  double* x = nullptr;
+  const double *l = nullptr, *q = nullptr, *s = nullptr;
+  Pair y{}, sum{}, carried{};
+  int next = 0;  // the first row of the next pair (0: not started)
+
+  void start(const PeriodicLdlFactors& f, double* rhs) {
+    x = rhs;
+    l = f.multiplier.data();
+    q = f.multiplier_pair.data();
+    s = f.spike.data();
+    const double b1 = x[1];
+    const double y1 = b1 - l[0] * x[0];
+    x[1] = y1;
+    y = Pair{x[0], y1};
+    carried = Pair{0.0, b1};  // (., b_{i-1}) of the first pair of rows
+    sum = load_pair(s) * y;
+    next = 2;
+  }
+  void step() {
+    const int i = next;
+    const Pair b = load_pair(x + i);        // (b_i, b_{i+1})
+    const Pair b_before{carried[1], b[0]};  // (b_{i-1}, b_i)
+    y = (b - load_pair(l + i - 1) * b_before) + load_pair(q + i - 2) * y;
+    store_pair(x + i, y);
+    sum += load_pair(s + i) * y;
+    carried = b;
+    next = i + 2;
+  }
+  // The remaining rows; row n - 1 is left holding y_{n-1} = b_{n-1} - sum_i s_i y_i.
+  void finish(int n) {
+    while (next + 1 <= n - 2) step();
+    const int i = next;
+    if (i == n - 2) {
+      const double even = x[i] - l[i - 1] * y[1];
+      x[i] = even;
+      sum[0] += s[i] * even;
+    }
+    x[n - 1] = x[n - 1] - (sum[0] + sum[1]);
+  }
+};
+
 }  // namespace
 
 template <std::size_t K>
 GRANVV_WIDE_LOOPS bool factorize_periodic(int n,
                                           const std::array<PeriodicTridiagonalView, K>& systems,
-                                          const std::array<PeriodicLdlFactors*, K>& factors) {
+                                          const std::array<PeriodicLdlFactors*, K>& factors,
+                                          double* first_rhs) {
   using L = Lanes<K>;
   constexpr std::size_t P = L::packs;
   std::array<const double*, K> a, e;
@@ -71,6 +120,7 @@ GRANVV_WIDE_LOOPS bool factorize_periodic(int n,
   // Per pack: d_i, s_i, the running d_{n-1}, l_{i-1}, and whether every pivot so far is > 0.
   std::array<Pair, P> pivot, spike, last, multiplier;
   PairMask positive = {-1, -1};
+  ForwardSweep sweep;
   for (std::size_t p = 0; p < P; ++p) {
     pivot[p] = L::gather(a, p, 0);
     positive &= pivot[p] > 0.0;
@@ -113,6 +163,14 @@ GRANVV_WIDE_LOOPS bool factorize_periodic(int n,
       finish_row(p, i, inverse);
       finish_row(p, i + 1, 1.0 / pivot[p]);
     }
+    // The first system's forward sweep, a pair of rows behind: rows i - 1 and i.
+    if (first_rhs != nullptr) {
+      if (i == 1) {
+        sweep.start(*factors[0], first_rhs);
+      } else {
+        sweep.step();
+      }
+    }
   }
   if (i + 2 < n) {  // one row left before n - 2
     for (std::size_t p = 0; p < P; ++p) {
@@ -137,55 +195,29 @@ GRANVV_WIDE_LOOPS bool factorize_periodic(int n,
     positive &= (last[p] > 0.0) & (last[p] <= kLargest);  // > 0 and finite
     L::scatter(r, p, n - 1, 1.0 / last[p]);
   }
+  if (first_rhs != nullptr) {
+    if (sweep.next == 0) sweep.start(*factors[0], first_rhs);
+    sweep.finish(n);
+  }
   return positive[0] != 0 && positive[1] != 0;
 }
 
 template <std::size_t K>
-GRANVV_WIDE_LOOPS void solve_periodic(int n,
-                                      const std::array<const PeriodicLdlFactors*, K>& factors,
-                                      const std::array<double*, K>& x) {
+GRANVV_WIDE_LOOPS void back_substitute_periodic(
+    int n, const std::array<const PeriodicLdlFactors*, K>& factors,
+    const std::array<double*, K>& x) {
   std::array<const double*, K> r, l, q, s;
-  std::array<Pair, K> y, sum, carried;
+  std::array<Pair, K> y, carried;
   std::array<double, K> x_last;
-  // L y = b. Row by row, y_i = b_i - l_{i-1} y_{i-1} is one chain of dependent multiply-adds;
-  // two rows at once, y_i = (b_i - l_{i-1} b_{i-1}) + l_{i-1} l_{i-2} y_{i-2}, are two chains
-  // (even and odd rows, the two lanes of y) of half the length. The spike row is a sum, also
-  // split in two.
+  // L^T x = D^-1 y, from the last unknown upwards, with g_i = y_i / d_i - s_i x_{n-1}:
+  // x_i = g_i - l_i x_{i+1} = (g_i - l_i g_{i+1}) + l_i l_{i+1} x_{i+2}, two chains (the lanes
+  // hold rows i - 1 and i).
   for (std::size_t k = 0; k < K; ++k) {
     r[k] = factors[k]->inverse_pivot.data();
     l[k] = factors[k]->multiplier.data();
     q[k] = factors[k]->multiplier_pair.data();
     s[k] = factors[k]->spike.data();
-    const double b1 = x[k][1];
-    const double y1 = b1 - l[k][0] * x[k][0];
-    x[k][1] = y1;
-    y[k] = Pair{x[k][0], y1};
-    carried[k] = Pair{0.0, b1};  // (., b_{i-1}) of the first pair of rows below
-    sum[k] = load_pair(s[k]) * y[k];
-  }
-  int i = 2;
-  for (; i + 1 <= n - 2; i += 2) {
-    for (std::size_t k = 0; k < K; ++k) {
-      const Pair b = load_pair(x[k] + i);        // (b_i, b_{i+1})
-      const Pair b_before{carried[k][1], b[0]};  // (b_{i-1}, b_i)
-      y[k] = (b - load_pair(l[k] + i - 1) * b_before) + load_pair(q[k] + i - 2) * y[k];
-      store_pair(x[k] + i, y[k]);
-      sum[k] += load_pair(s[k] + i) * y[k];
-      carried[k] = b;
-    }
-  }
-  if (i == n - 2) {
-    for (std::size_t k = 0; k < K; ++k) {
-      const double even = x[k][i] - l[k][i - 1] * y[k][1];
-      x[k][i] = even;
-      sum[k][0] += s[k][i] * even;
-    }
-  }
-  // L^T x = D^-1 y, from the last unknown upwards, with g_i = y_i / d_i - s_i x_{n-1}:
-  // x_i = g_i - l_i x_{i+1} = (g_i - l_i g_{i+1}) + l_i l_{i+1} x_{i+2}, again two chains
-  // (the lanes hold rows i - 1 and i).
-  for (std::size_t k = 0; k < K; ++k) {
-    x_last[k] = (x[k][n - 1] - (sum[k][0] + sum[k][1])) * r[k][n - 1];
+    x_last[k] = x[k][n - 1] * r[k][n - 1];
     x[k][n - 1] = x_last[k];
     const auto g = [&](int row) { return x[k][row] * r[k][row] - s[k][row] * x_last[k]; };
     const double even = g(n - 2);  // x_{n-2}
@@ -196,7 +228,7 @@ GRANVV_WIDE_LOOPS void solve_periodic(int n,
     y[k] = Pair{odd, even};
     carried[k] = Pair{g_before, 0.0};  // (g_{i+1}, .) of the first pair of rows below
   }
-  i = n - 4;
+  int i = n - 4;
   for (; i >= 1; i -= 2) {
     for (std::size_t k = 0; k < K; ++k) {
       const Pair g = load_pair(x[k] + i - 1) * load_pair(r[k] + i - 1) -
@@ -214,17 +246,33 @@ GRANVV_WIDE_LOOPS void solve_periodic(int n,
   }
 }
 
+template <std::size_t K>
+GRANVV_WIDE_LOOPS void solve_periodic(int n,
+                                      const std::array<const PeriodicLdlFactors*, K>& factors,
+                                      const std::array<double*, K>& x) {
+  std::array<ForwardSweep, K> sweep;
+  for (std::size_t k = 0; k < K; ++k) sweep[k].start(*factors[k], x[k]);
+  for (int i = 2; i + 1 <= n - 2; i += 2) {
+    for (std::size_t k = 0; k < K; ++k) sweep[k].step();
+  }
+  for (std::size_t k = 0; k < K; ++k) sweep[k].finish(n);
+  back_substitute_periodic<K>(n, factors, x);
+}
+
 template bool factorize_periodic<1>(int, const std::array<PeriodicTridiagonalView, 1>&,
-                                    const std::array<PeriodicLdlFactors*, 1>&);
+                                    const std::array<PeriodicLdlFactors*, 1>&, double*);
 template bool factorize_periodic<2>(int, const std::array<PeriodicTridiagonalView, 2>&,
-                                    const std::array<PeriodicLdlFactors*, 2>&);
+                                    const std::array<PeriodicLdlFactors*, 2>&, double*);
 template bool factorize_periodic<3>(int, const std::array<PeriodicTridiagonalView, 3>&,
-                                    const std::array<PeriodicLdlFactors*, 3>&);
+                                    const std::array<PeriodicLdlFactors*, 3>&, double*);
 template void solve_periodic<1>(int, const std::array<const PeriodicLdlFactors*, 1>&,
                                 const std::array<double*, 1>&);
 template void solve_periodic<2>(int, const std::array<const PeriodicLdlFactors*, 2>&,
                                 const std::array<double*, 2>&);
 template void solve_periodic<3>(int, const std::array<const PeriodicLdlFactors*, 3>&,
                                 const std::array<double*, 3>&);
+
+template void back_substitute_periodic<1>(int, const std::array<const PeriodicLdlFactors*, 1>&,
+                                          const std::array<double*, 1>&);
 
 }  // namespace granvv::hydro

@@ -143,8 +143,11 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
     }
     solve_periodic<2>(n, {&momentum_, &shear_}, {v_mid_.data(), vy_mid_.data()});
   } else {
-    if (!factorize_periodic<2>(n, {momentum, energy}, {&momentum_, &energy_})) return false;
-    solve_periodic<1>(n, {&momentum_}, {v_mid_.data()});
+    // The momentum's right side is known: its forward sweep runs inside the factorisation.
+    if (!factorize_periodic<2>(n, {momentum, energy}, {&momentum_, &energy_}, v_mid_.data())) {
+      return false;
+    }
+    back_substitute_periodic<1>(n, {&momentum_}, {v_mid_.data()});
   }
   to.node_x.resize(n);
   to.node_v.resize(n);
