@@ -35,10 +35,14 @@ struct PeriodicLdlFactors {
 };
 
 // Factorise K independent systems of n >= 3 unknowns in one interleaved sweep. Returns false if
-// any of them is not positive definite (its factors are then meaningless).
+// any of them is not positive definite (its factors are then meaningless). With first_rhs, the
+// forward half of the first system's solve (L y = b, on first_rhs in place) runs in the same
+// sweep, its chain beside the factorisation's; back_substitute_periodic completes it, bitwise as
+// solve_periodic would.
 template <std::size_t K>
 bool factorize_periodic(int n, const std::array<PeriodicTridiagonalView, K>& systems,
-                        const std::array<PeriodicLdlFactors*, K>& factors);
+                        const std::array<PeriodicLdlFactors*, K>& factors,
+                        double* first_rhs = nullptr);
 
 // Solve K independent systems in place: x[k] holds the right-hand side on entry, the solution on
 // return (forward sweep L y = b, scaling by 1/d, back sweep L^T x = D^-1 y, each sweep two rows
@@ -46,5 +50,10 @@ bool factorize_periodic(int n, const std::array<PeriodicTridiagonalView, K>& sys
 template <std::size_t K>
 void solve_periodic(int n, const std::array<const PeriodicLdlFactors*, K>& factors,
                     const std::array<double*, K>& x);
+// The second half of solve_periodic, on x as the forward half (factorize_periodic's first_rhs)
+// left it.
+template <std::size_t K>
+void back_substitute_periodic(int n, const std::array<const PeriodicLdlFactors*, K>& factors,
+                              const std::array<double*, K>& x);
 
 }  // namespace granvv::hydro

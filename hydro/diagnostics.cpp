@@ -2,8 +2,11 @@
 
 #include <limits>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
+GRANVV_WIDE_LOOPS
 Diagnostics diagnose(const LagrangianState& s, const CellGeometry& cells) {
   Diagnostics d;
   const int n = s.cells();

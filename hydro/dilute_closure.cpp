@@ -2,6 +2,7 @@
 
 #include "fields/constants.hpp"
 #include "hydro/haff.hpp"
+#include "hydro/wide_loops.hpp"
 
 namespace granvv::hydro {
 
@@ -12,6 +13,12 @@ DiluteClosure::DiluteClosure(const Physics& physics, CoolingRate cooling, double
       cooling_coefficient_(8.0 * physics.q / physics.K * loss_factor_) {}
 
 void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                                      CellCoefficients& out) const {
+  fill_coefficients(n, T, out);
+}
+
+GRANVV_WIDE_LOOPS
+void DiluteClosure::fill_coefficients(const std::vector<double>& n, const std::vector<double>& T,
                                       CellCoefficients& out) const {
   const size_t cells = n.size();
   out.resize(cells);
@@ -31,6 +38,12 @@ void DiluteClosure::cell_coefficients(const std::vector<double>& n, const std::v
 
 void DiluteClosure::sound_speed(const std::vector<double>& n, const std::vector<double>& T,
                                 std::vector<double>& c) const {
+  fill_sound_speed(n, T, c);
+}
+
+GRANVV_WIDE_LOOPS
+void DiluteClosure::fill_sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                                     std::vector<double>& c) const {
   c.resize(n.size());
   for (size_t i = 0; i < n.size(); ++i) c[i] = sound_speed(T[i]);
 }
@@ -43,6 +56,12 @@ void DiluteClosure::cooling_rate(const std::vector<double>& n, const std::vector
 
 void DiluteClosure::cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
                          std::vector<double>& cooled) const {
+  fill_cooled(n, T, dt, cooled);
+}
+
+GRANVV_WIDE_LOOPS
+void DiluteClosure::fill_cooled(const std::vector<double>& n, const std::vector<double>& T,
+                                double dt, std::vector<double>& cooled) const {
   cooled.resize(n.size());
   for (size_t i = 0; i < n.size(); ++i) {
     cooled[i] = cool_exactly(T[i], n[i], cooling_coefficient_, dt);

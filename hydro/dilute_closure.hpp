@@ -53,6 +53,14 @@ class DiluteClosure final : public Closure {
   ValidityScales validity_scales() const override;
 
  private:
+  // The loops of cell_coefficients, sound_speed and cool, compiled for wide vectors where the
+  // CPU has them (hydro/wide_loops.hpp: a virtual function cannot be multiversioned).
+  void fill_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                         CellCoefficients& out) const;
+  void fill_sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                        std::vector<double>& c) const;
+  void fill_cooled(const std::vector<double>& n, const std::vector<double>& T, double dt,
+                   std::vector<double>& cooled) const;
   // eta and kappa from T^{1/2}, which they share.
   double viscosity_of_root(double sqrt_T) const { return 0.25 * physics_.K * sqrt_T; }
   double conductivity_of_root(double sqrt_T) const { return physics_.K * sqrt_T; }

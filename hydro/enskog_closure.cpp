@@ -8,6 +8,7 @@
 #include "hydro/enskog_factors.hpp"
 #include "hydro/haff.hpp"
 #include "hydro/number_text.hpp"
+#include "hydro/wide_loops.hpp"
 
 namespace granvv::hydro {
 
@@ -50,6 +51,12 @@ std::optional<ClosureParameterProblem> EnskogClosure::parameter_problem(
 
 void EnskogClosure::cell_coefficients(const std::vector<double>& n, const std::vector<double>& T,
                                       CellCoefficients& out) const {
+  fill_coefficients(n, T, out);
+}
+
+GRANVV_WIDE_LOOPS
+void EnskogClosure::fill_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                                      CellCoefficients& out) const {
   const size_t cells = n.size();
   out.resize(cells);
   const double eta0 = 0.25 * physics_.K * transport_.viscosity;
@@ -74,6 +81,12 @@ void EnskogClosure::cell_coefficients(const std::vector<double>& n, const std::v
 
 void EnskogClosure::sound_speed(const std::vector<double>& n, const std::vector<double>& T,
                                 std::vector<double>& c) const {
+  fill_sound_speed(n, T, c);
+}
+
+GRANVV_WIDE_LOOPS
+void EnskogClosure::fill_sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                                     std::vector<double>& c) const {
   c.resize(n.size());
   for (size_t i = 0; i < n.size(); ++i) {
     c[i] = std::sqrt(T[i] * enskog::sound_speed_factor(area_fraction_ * n[i], restitution_));
@@ -91,6 +104,12 @@ void EnskogClosure::cooling_rate(const std::vector<double>& n, const std::vector
 
 void EnskogClosure::cool(const std::vector<double>& n, const std::vector<double>& T, double dt,
                          std::vector<double>& cooled) const {
+  fill_cooled(n, T, dt, cooled);
+}
+
+GRANVV_WIDE_LOOPS
+void EnskogClosure::fill_cooled(const std::vector<double>& n, const std::vector<double>& T,
+                                double dt, std::vector<double>& cooled) const {
   // At fixed n the sink is c (n chi) T^{3/2}: Haff's exact solution with n chi for n.
   cooled.resize(n.size());
   for (size_t i = 0; i < n.size(); ++i) {

@@ -60,6 +60,15 @@ class EnskogClosure : public Closure {
                 const InelasticTransport& transport);
 
  private:
+  // The loops of cell_coefficients, sound_speed and cool, compiled for wide vectors where the
+  // CPU has them (hydro/wide_loops.hpp: a virtual function cannot be multiversioned).
+  void fill_coefficients(const std::vector<double>& n, const std::vector<double>& T,
+                         CellCoefficients& out) const;
+  void fill_sound_speed(const std::vector<double>& n, const std::vector<double>& T,
+                        std::vector<double>& c) const;
+  void fill_cooled(const std::vector<double>& n, const std::vector<double>& T, double dt,
+                   std::vector<double>& cooled) const;
+
   Physics physics_;
   double area_fraction_;  // phi0: phi = phi0 n
   double restitution_;    // r = 1 - 2q

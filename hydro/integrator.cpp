@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "hydro/largest_value.hpp"
+#include "hydro/wide_loops.hpp"
 
 namespace granvv::hydro {
 
@@ -12,6 +13,7 @@ namespace {
 
 // Energy sum m_i (T_i - T'_i) removed by cooling T to T', in four partial sums (independent
 // chains of additions).
+GRANVV_WIDE_LOOPS
 double energy_removed(const std::vector<double>& cell_mass, const std::vector<double>& T,
                       const std::vector<double>& cooled) {
   std::array<double, 4> partial{};
@@ -25,6 +27,7 @@ double energy_removed(const std::vector<double>& cell_mass, const std::vector<do
 }
 
 // Largest |T'_i / T_i - 1|, the per-cell changes stored first (a loop that vectorises).
+GRANVV_WIDE_LOOPS
 double largest_relative_change(const std::vector<double>& T, const std::vector<double>& changed,
                                std::vector<double>& change) {
   change.resize(T.size());
@@ -37,6 +40,7 @@ double largest_relative_change(const std::vector<double>& T, const std::vector<d
 HydroIntegrator::HydroIntegrator(const Closure& closure, int cells)
     : closure_(closure), op_(closure, cells) {}
 
+GRANVV_WIDE_LOOPS
 StepOutcome HydroIntegrator::step(LagrangianState& s, double dt, CellGeometry& cells) {
   StepOutcome out;
   const int n = s.cells();

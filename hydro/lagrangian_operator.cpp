@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
 LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
@@ -26,6 +28,7 @@ LagrangianOperator::LagrangianOperator(const Closure& closure, int cells)
     throw std::invalid_argument("periodic tridiagonal system needs at least 3 unknowns");
 }
 
+GRANVV_WIDE_LOOPS
 void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
                                 const std::vector<double>& widths, const std::vector<double>& T,
                                 double dt, const std::vector<double>& reference_dv,
@@ -81,6 +84,7 @@ void LagrangianOperator::freeze(const std::vector<double>& cell_mass,
   if (density_heat_flux) node_coupling(cell.mu, out.density_heat_coupling);
 }
 
+GRANVV_WIDE_LOOPS
 bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<double>& T_from,
                                  const FrozenCoefficients& c, double dt, PassFields& to) {
   const int n = n_;
@@ -139,8 +143,11 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
     }
     solve_periodic<2>(n, {&momentum_, &shear_}, {v_mid_.data(), vy_mid_.data()});
   } else {
-    if (!factorize_periodic<2>(n, {momentum, energy}, {&momentum_, &energy_})) return false;
-    solve_periodic<1>(n, {&momentum_}, {v_mid_.data()});
+    // The momentum's right side is known: its forward sweep runs inside the factorisation.
+    if (!factorize_periodic<2>(n, {momentum, energy}, {&momentum_, &energy_}, v_mid_.data())) {
+      return false;
+    }
+    back_substitute_periodic<1>(n, {&momentum_}, {v_mid_.data()});
   }
   to.node_x.resize(n);
   to.node_v.resize(n);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
 double cell_centre(const LagrangianState& s, int i) {
@@ -12,6 +14,7 @@ double wrap_position(double x) {
   return x - std::floor(x + 0.5);
 }
 
+GRANVV_WIDE_LOOPS
 void cell_widths(const std::vector<double>& node_x, std::vector<double>& widths) {
   const int n = static_cast<int>(node_x.size());
   widths.resize(n);
@@ -19,6 +22,7 @@ void cell_widths(const std::vector<double>& node_x, std::vector<double>& widths)
   widths[n - 1] = cell_width(node_x, n - 1);
 }
 
+GRANVV_WIDE_LOOPS
 void measure_cells(const LagrangianState& s, CellGeometry& out) {
   cell_widths(s.node_x, out.width);
   const int n = s.cells();

@@ -3,11 +3,14 @@
 #include <cmath>
 #include <limits>
 
+#include "hydro/wide_loops.hpp"
+
 namespace granvv::hydro {
 
 TimeStepLimiter::TimeStepLimiter(const Closure& closure, const TimeStepControl& control)
     : closure_(closure), control_(control) {}
 
+GRANVV_WIDE_LOOPS
 TimeStepLimit TimeStepLimiter::limit(const LagrangianState& s, const CellGeometry& cells) {
   const int n = s.cells();
   closure_.sound_speed(cells.density, s.cell_T, sound_speed_);

@@ -5,6 +5,7 @@
 
 #include "hydro/enskog_factors.hpp"
 #include "hydro/largest_value.hpp"
+#include "hydro/wide_loops.hpp"
 
 namespace granvv::hydro {
 namespace {
@@ -23,6 +24,7 @@ struct Largest {
   double value = 0.0;
   int at = 0;
 };
+GRANVV_WIDE_LOOPS
 Largest largest_of(const std::vector<double>& values) {
   const double largest = largest_value(values);
   Largest out{largest, 0};
@@ -64,6 +66,7 @@ bool monitor_applies(Monitor m, const ValidityScales& scales) {
   return m != Monitor::area_fraction || scales.area_fraction > 0.0;
 }
 
+GRANVV_WIDE_LOOPS
 ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& cells,
                                   const ValidityScales& scales, ValidityWorkspace& work) {
   const int N = s.cells();

@@ -21,6 +21,7 @@
 
 namespace {
 
+using granvv::hydro::back_substitute_periodic;
 using granvv::hydro::factorize_periodic;
 using granvv::hydro::PeriodicLdlFactors;
 using granvv::hydro::PeriodicTridiagonalSolver;
@@ -165,6 +166,35 @@ TEST(BatchedTridiagonal, InterleavedSystemsGetTheirOwnSolutionsBitForBit) {
   ASSERT_TRUE(factorize_periodic<2>(n, {s1.view(), s2.view()}, {&g1, &g2}));
   EXPECT_EQ(g2.inverse_pivot, f2.inverse_pivot);
   EXPECT_EQ(g2.spike, f2.spike);
+}
+
+TEST(BatchedTridiagonal, ForwardSweepInsideTheFactorisationIsTheSolveBitForBit) {
+  // The operator's momentum system: its forward sweep runs in the factorisation's sweep
+  // (first_rhs), the back substitution after; every size from the smallest, both parities, one
+  // to three systems in the sweep.
+  for (int n : {3, 4, 5, 6, 7, 8, 9, 64, 65, 2000}) {
+    const System s1 = random_system(n, 1.0, 2.0, 5 * n + 1),
+                 s2 = random_system(n, 1e-3, 3.0, 5 * n + 2),
+                 s3 = random_system(n, 10.0, 1.0, 5 * n + 3);
+    const std::vector<double> expected = batched_solution(s1);
+    PeriodicLdlFactors f1, f2, f3;
+    std::vector<double> x = s1.rhs;
+    ASSERT_TRUE(factorize_periodic<1>(n, {s1.view()}, {&f1}, x.data()));
+    back_substitute_periodic<1>(n, {&f1}, {x.data()});
+    EXPECT_EQ(x, expected) << "1 system, n = " << n;
+    x = s1.rhs;
+    ASSERT_TRUE(factorize_periodic<2>(n, {s1.view(), s2.view()}, {&f1, &f2}, x.data()));
+    back_substitute_periodic<1>(n, {&f1}, {x.data()});
+    EXPECT_EQ(x, expected) << "2 systems, n = " << n;
+    x = s1.rhs;
+    ASSERT_TRUE(
+        factorize_periodic<3>(n, {s1.view(), s2.view(), s3.view()}, {&f1, &f2, &f3}, x.data()));
+    back_substitute_periodic<1>(n, {&f1}, {x.data()});
+    EXPECT_EQ(x, expected) << "3 systems, n = " << n;
+    std::vector<double> x2 = s2.rhs;
+    solve_periodic<1>(n, {&f2}, {x2.data()});
+    EXPECT_EQ(x2, batched_solution(s2)) << "the other system, n = " << n;
+  }
 }
 
 TEST(BatchedTridiagonal, RefusesMatricesThatAreNotPositiveDefinite) {
