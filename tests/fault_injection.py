@@ -43,6 +43,13 @@ MD_SLOW = MD + ["--set", "md.t_end=4000", "--set", "md.output_times=[0.0,4000.0]
 # Two members of a few seconds each, checkpointed every 0.3 s of wall time.
 MD_RESUMABLE = MD + ["--set", "md.ensemble=2", "--set", "md.t_end=30",
                      "--set", "md.output_times=[0.0,15.0,30.0]", "--set", "md.checkpoint_interval=0.3"]
+# The same four times longer, for runs stopped under mpirun once their members have checkpoints:
+# on an idle machine the 30-unit run is over within a second of its first checkpoint, and may end
+# before mpirun has passed the signal on to its ranks.
+MPI_T_END = 120
+MD_RESUMABLE_MPI = MD + ["--set", "md.ensemble=2", "--set", f"md.t_end={MPI_T_END}",
+                         "--set", f"md.output_times=[0.0,{MPI_T_END / 2},{MPI_T_END}.0]",
+                         "--set", "md.checkpoint_interval=0.3"]
 # Long enough for any run of this file on a loaded machine; a hang fails the test instead.
 TIMEOUT = 300
 
@@ -357,7 +364,7 @@ class Mpi(FolderState):
         """A particle run of two members (or one) into d under mpirun -np 2, stopped once its
         last member has a checkpoint; the mpirun command that ran it."""
         mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
-        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE +
+        p = subprocess.Popen(mpirun + ["run"] + MD_RESUMABLE_MPI +
                              ["--set", f"md.ensemble={members}", "--out", str(d)],
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         last = d / ".granvv-checkpoint" / f"member_{members - 1}.h5"
@@ -406,13 +413,13 @@ class Mpi(FolderState):
                 steps = f["particles/all/position/step"][()]
                 x = f["particles/all/position/value"]
                 self.assertTrue(x.is_virtual)
-                self.assertEqual(len(steps), 31)  # t = 0, 1, ..., 30
+                self.assertEqual(len(steps), MPI_T_END + 1)  # t = 0, 1, ..., MPI_T_END
                 self.assertTrue((steps[1:] > steps[:-1]).all())
-                self.assertEqual(x.shape, (31, 400, 2))
+                self.assertEqual(x.shape, (MPI_T_END + 1, 400, 2))
                 self.assertTrue(np.isfinite(x[()]).all())  # every row of every frame
             for k in (0, 1):
                 with h5py.File(d / f"particles_m{m}.rank000{k}.h5", "r") as f:
-                    self.assertEqual(f["particles/all/position/value"].shape, (31, 200, 2))
+                    self.assertEqual(f["particles/all/position/value"].shape, (MPI_T_END + 1, 200, 2))
 
     def test_lammps_members_on_one_rank_each_resume_on_their_ranks(self):
         # md.ranks_per_member = 1 under two ranks: member m runs on rank m (a group of one), which
@@ -420,7 +427,7 @@ class Mpi(FolderState):
         # on its rank from them.
         mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", GRANVV]
         d = self.tmp / "groups"
-        args = MD_RESUMABLE + ["--set", "md.ranks_per_member=1"]
+        args = MD_RESUMABLE_MPI + ["--set", "md.ranks_per_member=1"]
         p = subprocess.Popen(mpirun + ["run"] + args + ["--out", str(d)],
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         c = d / ".granvv-checkpoint"
@@ -445,7 +452,7 @@ class Mpi(FolderState):
                 steps = f["particles/all/position/step"][()]
                 x = f["particles/all/position/value"]
                 self.assertFalse(x.is_virtual)  # one rank wrote all of it
-                self.assertEqual(x.shape, (31, 400, 2))  # t = 0, 1, ..., 30
+                self.assertEqual(x.shape, (MPI_T_END + 1, 400, 2))  # t = 0, 1, ..., MPI_T_END
                 self.assertTrue((steps[1:] > steps[:-1]).all())
                 self.assertTrue(np.isfinite(x[()]).all())
 
