@@ -12,11 +12,16 @@
 #include "fields/hdf5_datasets.hpp"
 #include "md_bridge/every_rank.hpp"
 #include "md_bridge/mpi_environment.hpp"
+#include "scene/core_turns.hpp"
 #include "scene/md_scene.hpp"
 
 namespace granvv::app {
 
 namespace {
+
+// How long a member holds a core before it passes it on to a waiting one (scene/core_turns.hpp):
+// long against the cache refill a switch costs (milliseconds), short against a member's run.
+constexpr double kCoreSliceSeconds = 0.5;
 
 // Another member failed: this one stops at its next sample.
 struct Abandoned : std::runtime_error {
@@ -74,9 +79,14 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, const Member
   }
 
   // MPI calls from several threads at once need MPI_THREAD_MULTIPLE and a communicator each; a
-  // member over several ranks runs one at a time.
-  out.threads = std::max(1, std::min<int>(jobs, int(to_run.size())));
+  // member over several ranks runs one at a time. With jobs > 1 one member more than jobs runs,
+  // the jobs cores passed round among them (scene/core_turns.hpp), so that a heavy member that
+  // comes late does not run alone at the end.
+  const int cores = std::max(1, std::min<int>(jobs, int(to_run.size())));
+  out.threads = cores > 1 ? std::min<int>(cores + 1, int(to_run.size())) : 1;
   if (md::MpiEnvironment::thread_level() < MPI_THREAD_MULTIPLE || groups.size > 1) out.threads = 1;
+  CoreTurns turns(out.threads > 1 ? cores : 1, kCoreSliceSeconds);
+  CoreTurns* const turns_for_members = out.threads > cores ? &turns : nullptr;
   MPI_Comm group_comm;
   MPI_Comm_split(comm, group, rank, &group_comm);
   std::vector<MPI_Comm> comms(std::size_t(out.threads));
@@ -120,12 +130,16 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, const Member
     }
     checkpoints.resume_from = earlier_of(m) ? &earlier_of(m)->state : nullptr;
     MemberRecord record;
+    CoreTurn core(turns_for_members);
     record.run = md::run_md(
         spec, *engine,
         [&](const md::MdProgress& p) {
           if (abandon) throw Abandoned();
-          const std::lock_guard<std::mutex> lock(mutex);
-          if (progress) progress(m, p);
+          {
+            const std::lock_guard<std::mutex> lock(mutex);
+            if (progress) progress(m, p);
+          }
+          core.offer();
         },
         checkpoints);
     record.totals = engine->save_state(false);
