@@ -204,13 +204,16 @@ bool LagrangianOperator::advance(const LagrangianState& from, const std::vector<
     density_flux(n - 1, n - 2, 0);
   }
   solve_periodic<1>(n, {&energy_}, {to.cell_T.data()});
-  // 0 < T <= the largest double: positive and finite (NaN fails both comparisons).
+  // 0 < T <= the largest double: positive and finite (NaN fails both comparisons). No node may
+  // overtake its neighbour. The failures are counted (an integer sum of comparisons vectorises,
+  // a running boolean does not).
   constexpr double kLargest = std::numeric_limits<double>::max();
-  bool physical = true;
-  for (int i = 0; i < n; ++i) physical &= (to.cell_T[i] > 0.0) & (to.cell_T[i] <= kLargest);
-  // No node may overtake its neighbour.
-  for (int i = 0; i + 1 < n; ++i) physical &= to.node_x[i + 1] > to.node_x[i];
-  return physical && cell_width(to.node_x, n - 1) > 0.0;
+  const double* T_to = to.cell_T.data();
+  const double* x_to = to.node_x.data();
+  int failures = 0;
+  for (int i = 0; i < n; ++i) failures += !((T_to[i] > 0.0) & (T_to[i] <= kLargest));
+  for (int i = 0; i + 1 < n; ++i) failures += !(x_to[i + 1] > x_to[i]);
+  return failures == 0 && cell_width(to.node_x, n - 1) > 0.0;
 }
 
 }  // namespace granvv::hydro

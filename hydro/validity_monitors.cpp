@@ -20,18 +20,10 @@ int index(Monitor m) {
 
 // The largest of values (0 if none is positive) and the first index holding it (as a running
 // "keep if greater" scan finds it); NaN is never the largest.
-struct Largest {
-  double value = 0.0;
-  int at = 0;
-};
+using Largest = LargestAt;
 GRANVV_WIDE_LOOPS
 Largest largest_of(const std::vector<double>& values) {
-  const double largest = largest_value(values);
-  Largest out{largest, 0};
-  if (largest > 0.0) {
-    while (values[out.at] != largest) ++out.at;
-  }
-  return out;
+  return largest_with_index(values);
 }
 
 }  // namespace
