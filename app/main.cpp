@@ -95,8 +95,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--resume", run.resume,
                     "continue the checkpoints in the output folder if they are of this case");
   constexpr const char* kJobsHelp =
-      "ensemble members at a time in threads (default: the cores, shared among the MPI ranks "
-      "of the machine); the results do not depend on it. The event-driven engine only: LAMMPS "
+      "cores for the ensemble's members (default: the cores, shared among the MPI ranks of the "
+      "machine; with more members than N, N + 1 run and pass the N cores round); the results do "
+      "not depend on it. The event-driven engine only: LAMMPS "
       "runs its members one after another (its library instances are not independent)";
   run_cmd->add_option("--jobs", run.jobs, kJobsHelp)->check(CLI::PositiveNumber);
 

@@ -92,14 +92,25 @@ void EventDrivenEngine::restore_whole(const EngineState& state, double segment_t
   const auto& id = integers("id", 0, double(n) - 1);
   const auto& collisions = integers("collisions", 0, count_limit);
   const auto& event = integers("event", kCollision, 1);
-  const auto& soonest_t = array("soonest_t", n);
+  // Times of events still to come: none before the last sample. A disk's soonest collision is
+  // never before its calendar entry (the earliest of it and its cell crossings), so neither is;
+  // one in the past would be taken at once and move its disks back by that time.
+  const auto still_to_come = [&](const std::string& name) -> const std::vector<double>& {
+    const std::vector<double>& c = array(name, n);
+    for (const double v : c)
+      if (!(v >= t_))
+        bad("'" + name + "' holds " + std::to_string(v) + ", before t = " + std::to_string(t_));
+    return c;
+  };
+  const auto& soonest_t = still_to_come("soonest_t");
   const auto& partner = integers("soonest_partner", -1, double(n) - 1);
   const auto& partner_collisions = integers("soonest_partner_collisions", 0, count_limit);
   const auto& last_impact = array("last_impact", n);
-  const auto& calendar = array("calendar_t", n);
-  for (const double v : calendar)  // every event still to come lies after the last sample
-    if (!(v >= t_))
-      bad("'calendar_t' holds " + std::to_string(v) + ", before t = " + std::to_string(t_));
+  for (const double v : last_impact)  // an impact that happened (or none: -inf)
+    if (!(v <= segment_time))
+      bad("'last_impact' holds " + std::to_string(v) + ", after the state's time " +
+          std::to_string(segment_time));
+  const auto& calendar = still_to_come("calendar_t");
   // A collision on the calendar is with another disk; only a disk at rest and alone, never due,
   // has a collision entry without a partner.
   for (std::size_t i = 0; i < n; ++i)

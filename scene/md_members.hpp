@@ -1,8 +1,9 @@
 #pragma once
 // The members of an ensemble run apart: each member on an engine of its own, made afresh with its
 // seed (md.seed + m). For an engine whose members are independent
-// (md::ParticleEngine::independent_members) member m runs on MPI rank m mod P, and on each rank up
-// to `jobs` of them at a time in threads; for an engine that runs a member over several ranks
+// (md::ParticleEngine::independent_members) member m runs on MPI rank m mod P, and on each rank
+// in threads on `jobs` cores (with more members than jobs, jobs + 1 threads pass the cores
+// round, scene/core_turns.hpp); for an engine that runs a member over several ranks
 // (md::ParticleEngine::ranks_per_member) the ranks form groups of that many, member m runs on
 // group m mod G, one member at a time. Every member's result is the one it has when the members
 // run in turn on one rank, or on one group (docs/performance.md, "Ensemble members in parallel").

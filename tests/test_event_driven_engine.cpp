@@ -399,12 +399,23 @@ TEST(EventDrivenEngine, ARunContinuedFromInsideASegmentMatchesTheUninterruptedOn
   EXPECT_EQ(continued.fields.snapshots.back().T, uninterrupted.fields.snapshots.back().T);
   EXPECT_EQ(fresh.gather_frame().x, whole.gather_frame().x);
   EXPECT_EQ(fresh.gather_frame().v, whole.gather_frame().v);
-  // A state whose arrays were edited is refused by the engine, not run.
-  for (const char* name : {"id", "cell", "soonest_partner", "calendar_t"}) {
+  // A state whose arrays were edited is refused by the engine, not run. A soonest collision in
+  // the past (here the most negative 64-bit integer, as a file that stored the column as
+  // integers holds it) would be taken at once and move its disks back by that time.
+  const std::vector<std::pair<std::string, double>> edits = {
+      {"id", 1e9},
+      {"cell", 1e9},
+      {"soonest_partner", 1e9},
+      {"calendar_t", -1.0},
+      {"soonest_t", -9.223372036854775808e18},
+      {"soonest_t", -1.0},
+      {"last_impact", 1e300}};
+  for (const auto& [name, value] : edits) {
     EngineState broken = saved->engine;
     for (auto& [key, values] : broken.arrays)
-      if (key == name) values[3] = name == std::string("calendar_t") ? -1.0 : 1e9;
+      if (key == name) values[3] = value;
     EventDrivenEngine other(options_for(spec.scene));
+    EXPECT_NE(other.state_problem(broken), "") << name;
     EXPECT_THROW(other.restore_state(broken), std::invalid_argument) << name;
   }
 }
