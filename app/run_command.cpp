@@ -108,7 +108,9 @@ MdOutcome run_particles(const MdScene& scene, md::ParticleEngine& engine, double
       &checkpointing);
   model.run();
   const MdOutcome& out = model.outcome();
-  if (out.threads > 1) log.info("md: members ran {} at a time in threads", out.threads);
+  if (out.threads > 1) {
+    log.info("md: members ran {} at a time in threads on {} cores", out.threads, out.cores);
+  }
   if (out.member_groups > 1) {
     log.info("md: members ran on {} groups of {} MPI rank(s), member m on group m mod {}",
              out.member_groups, out.ranks_per_group, out.member_groups);

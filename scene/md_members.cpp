@@ -85,8 +85,9 @@ MembersApart run_members_apart(const MdScene& scene, MPI_Comm comm, const Member
   const int cores = std::max(1, std::min<int>(jobs, int(to_run.size())));
   out.threads = cores > 1 ? std::min<int>(cores + 1, int(to_run.size())) : 1;
   if (md::MpiEnvironment::thread_level() < MPI_THREAD_MULTIPLE || groups.size > 1) out.threads = 1;
-  CoreTurns turns(out.threads > 1 ? cores : 1, kCoreSliceSeconds);
-  CoreTurns* const turns_for_members = out.threads > cores ? &turns : nullptr;
+  out.cores = out.threads > 1 ? cores : 1;
+  CoreTurns turns(out.cores, kCoreSliceSeconds);
+  CoreTurns* const turns_for_members = out.threads > out.cores ? &turns : nullptr;
   MPI_Comm group_comm;
   MPI_Comm_split(comm, group, rank, &group_comm);
   std::vector<MPI_Comm> comms(std::size_t(out.threads));

@@ -43,6 +43,7 @@ MemberGroups member_groups(const md::ParticleEngine& engine, int ranks);
 struct MembersApart {
   std::vector<MemberRecord> records;  // every member in order, the same on every rank
   int threads = 1;                    // members at a time on this rank
+  int cores = 1;                      // the cores they share (threads > cores: passed round)
   int checkpoints_written = 0;        // over every rank
   int resumed_member = -1;            // the first member continued from its checkpoint
   double resumed_t = 0.0;

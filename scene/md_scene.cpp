@@ -498,6 +498,7 @@ MdOutcome run_md_scene(const MdScene& scene, md::ParticleEngine& engine,
       out.runs.push_back(std::move(apart.records[m].run));
     }
     out.threads = apart.threads;
+    out.cores = apart.cores;
     out.checkpoints_written = apart.checkpoints_written;
     out.resumed_member = apart.resumed_member;
     out.resumed_t = apart.resumed_t;

@@ -99,6 +99,7 @@ struct MdOutcome {
   double resumed_t = 0.0;
   int members_restored = 0;  // finished members taken from the checkpoints
   int threads = 1;           // members at a time on each rank (scene/md_members.hpp)
+  int cores = 1;             // the cores those threads share on each rank
   int member_groups = 1;     // groups of ranks the members were spread over, and their size
   int ranks_per_group = 1;   // (scene/md_members.hpp; one group of every rank: members in turn)
 };
