@@ -18,14 +18,6 @@ int index(Monitor m) {
   return static_cast<int>(m);
 }
 
-// The largest of values (0 if none is positive) and the first index holding it (as a running
-// "keep if greater" scan finds it); NaN is never the largest.
-using Largest = LargestAt;
-GRANVV_WIDE_LOOPS
-Largest largest_of(const std::vector<double>& values) {
-  return largest_with_index(values);
-}
-
 }  // namespace
 
 const std::array<MonitorDefinition, kMonitors>& monitor_definitions() {
@@ -102,18 +94,18 @@ ValidityMeasures measure_validity(const LagrangianState& s, const CellGeometry& 
 #pragma GCC ivdep  // distinct arrays
   for (int i = 1; i + 1 < N; ++i) measure(i, i - 1, i + 1);
   measure(N - 1, N - 2, 0);
-  std::array<Largest, kMonitors> largest;
-  Largest area;
+  std::array<LargestAt, kMonitors> largest;
+  LargestAt area;
   if (phi0 != 0.0) {
     // phi0 n_i is largest where n_i is (phi0 > 0; phi0 = 0 leaves the monitor at 0); the first
     // cell holding the rounded product phi0 n_max, as a scan of phi0 n_i would find it.
-    area.value = phi0 * largest_of(n).value;
+    area.value = phi0 * largest_with_index(n).value;
     while (area.value > 0.0 && phi0 * n[area.at] != area.value) ++area.at;
   }
   largest[index(Monitor::area_fraction)] = area;
-  largest[index(Monitor::knudsen_density)] = largest_of(work.density_jump);
-  largest[index(Monitor::knudsen_temperature)] = largest_of(work.temperature_jump);
-  const Largest flow_largest = largest_of(work.flow);
+  largest[index(Monitor::knudsen_density)] = largest_with_index(work.density_jump);
+  largest[index(Monitor::knudsen_temperature)] = largest_with_index(work.temperature_jump);
+  const LargestAt flow_largest = largest_with_index(work.flow);
   largest[index(Monitor::collision_flow)] = flow_largest;
   // l |dv/dx| / T^{1/2} = (sqrt(2 pi)/8) g = sqrt(pi/2) tau |dv/dx|, at the same cell.
   largest[index(Monitor::knudsen_velocity)] = {
