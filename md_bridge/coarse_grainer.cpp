@@ -73,16 +73,17 @@ Moments::Moments(int bins)
       virial_xx(bins, 0.0),
       virial_yy(bins, 0.0),
       virial_xx2(bins, 0.0),
-      virial_yy2(bins, 0.0) {}
+      virial_yy2(bins, 0.0),
+      mv2vx(bins, 0.0) {}
 
 std::vector<std::vector<double>*> Moments::arrays() {
-  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,        &mv2,
-          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2};
+  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
+          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2, &mv2vx};
 }
 
 std::vector<const std::vector<double>*> Moments::arrays() const {
-  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,        &mv2,
-          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2};
+  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
+          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2, &mv2vx};
 }
 
 Moments& Moments::operator+=(const Moments& other) {
@@ -215,6 +216,7 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
       m.virial_yy[i] += wi * wyy;
       m.virial_xx2[i] += wi * wi * wxx * wxx;
       m.virial_yy2[i] += wi * wi * wyy * wyy;
+      m.mv2vx[i] += wi * mc2 * cx;
     };
 
     if (kernel_ == Kernel::bin) {
@@ -275,6 +277,8 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
     a->assign(bins, kNaN);
   }
   const double area = dx_ * grid_.Ly;
+  f.energy_flux_x.resize(bins);
+  for (int i = 0; i < bins; ++i) f.energy_flux_x[i] = 0.5 * m.mv2vx[i] / area;
   for (int i = 0; i < bins; ++i) {
     const BinPressure p = bin_pressure(m, i, area);
     f.P_xx[i] = p.xx, f.P_yy[i] = p.yy, f.P_xx_stderr[i] = p.xx_stderr;

@@ -53,12 +53,13 @@ struct CoarseGrainGrid {
 //   virial_xx, virial_yy   = sum w W_xx, sum w W_yy (the particles' contact virial shares,
 //                            md_bridge/particle_engine.hpp LocalVirial)
 //   virial_xx2, virial_yy2 = sum w^2 W_xx^2, sum w^2 W_yy^2 (their sampling variance)
+//   mv2vx        = sum w m |c|^2 c_x (twice the kinetic energy flux along x, box frame)
 // `particles` counts the particles accumulated (exact below 2^53), `virial_particles` those
 // accumulated with a contact virial. Moments of disjoint
 // particle sets add: that is the MPI reduction and the merging of chunks.
 struct Moments {
   std::vector<double> weight, weight2, mass, mass_weight2, px, py, mv2;
-  std::vector<double> mvx2, mvy2, virial_xx, virial_yy, virial_xx2, virial_yy2;
+  std::vector<double> mvx2, mvy2, virial_xx, virial_yy, virial_xx2, virial_yy2, mv2vx;
   double particles = 0.0, virial_particles = 0.0;
   // Whether every particle came with its contact virial (the pressure is then defined).
   bool has_virial() const { return particles > 0.0 && virial_particles == particles; }
@@ -93,6 +94,11 @@ struct Moments {
 // n T_a sqrt(2 / (N_eff - 1)), and the sampling error of the virial sum, sqrt(2 sum w^2 W_aa^2)
 // / A_bin (independent contacts, each shared in two equal halves). P_xx, P_yy are NaN where T is,
 // and everywhere when the moments carry no contact virial (Moments::has_virial).
+// Kinetic energy flux along x in the box frame: energy_flux_x = (1/2) sum w m |c|^2 c_x / A_bin,
+// a plain sum, without the bin's mean flow removed. The heat flux relative to a flow is formed
+// from it at the level of a mode (compare/heat_flux_fit.hpp): removing each bin's own sample
+// mean would bias a third moment by about -3/N for N particles per bin. The contact (collisional)
+// transfer of energy is not in it.
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because

@@ -589,6 +589,51 @@ TEST(CoarseGrainer, EnergySplitAndMomentum) {
 // moments equal those of the wrapped sample (plain bins exactly; smooth kernels to round-off,
 // 1e-12, since x - x_lo differs in its last bits). The edges: x_lo + Lx is x_lo (bin 0), a hair
 // below x_lo is in the last bin, a hair above x_lo + Lx in the first.
+// The kinetic energy flux (1/2) sum m |v|^2 v_x per unit area: exact sums on hand-placed particles
+// (bins), the whole box's flux conserved by every kernel (each particle's weights add up to one),
+// and a drifting Maxwellian's enthalpy flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x]
+// = U (U^2 + 4 T/m) for a drift U along x, within 4 standard errors of the particles' own scatter.
+TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
+  const double Lx = 4.0, Ly = 2.0;
+  const CoarseGrainer bins(make_grid(0.0, Lx, Ly, 4, "bin", 0.0));
+  Particles few;
+  few.add(0.5, 0.0, 1.0, 2.0, 2.0);   // bin 0: (1/2) 2 (1 + 4) 1 = 5
+  few.add(0.7, 0.3, -3.0, 0.0, 1.0);  // bin 0: (1/2) 9 (-3) = -13.5
+  few.add(2.5, -0.2, 0.0, 5.0, 1.0);  // bin 2: no x velocity, no flux
+  few.add(3.9, 0.1, 2.0, -1.0, 0.5);  // bin 3: (1/2) 0.5 5 2 = 2.5
+  const FieldSnapshot f = bins.fields(grain(bins, few));
+  const double area = Ly * Lx / 4;
+  ASSERT_EQ(f.energy_flux_x.size(), 4u);
+  EXPECT_DOUBLE_EQ(f.energy_flux_x[0], (5.0 - 13.5) / area);
+  EXPECT_EQ(f.energy_flux_x[1], 0.0);
+  EXPECT_EQ(f.energy_flux_x[2], 0.0);
+  EXPECT_DOUBLE_EQ(f.energy_flux_x[3], 2.5 / area);
+
+  std::mt19937_64 rng(31);
+  const double U = 0.3, T = 1.0;
+  const int N = 200000;
+  const Particles gas = maxwellian(
+      N, 0.0, 40.0, 10.0, T, [U](double) { return U; }, [](double) { return 0.0; }, rng);
+  double sum = 0.0, sum2 = 0.0;
+  for (int i = 0; i < gas.size(); ++i) {
+    const double vx = gas.v[3 * i], vy = gas.v[3 * i + 1];
+    const double j = 0.5 * gas.m[i] * (vx * vx + vy * vy) * vx;
+    sum += j, sum2 += j * j;
+  }
+  for (const auto& k : kKernels) {
+    SCOPED_TRACE(k.name);
+    const CoarseGrainer cg(make_grid(0.0, 40.0, 10.0, 16, k.name, k.width_in_bins * 2.5));
+    const FieldSnapshot g = cg.fields(grain(cg, gas));
+    double total = 0.0;
+    for (double j : g.energy_flux_x) total += j * 2.5 * 10.0;
+    EXPECT_NEAR(total, sum, 1e-9 * std::sqrt(sum2));
+  }
+  const double mean = sum / N;
+  const double stderr_mean = std::sqrt((sum2 / N - mean * mean) / N);
+  EXPECT_NEAR(mean, 0.5 * U * (U * U + 4.0 * T), 4.0 * stderr_mean);
+  EXPECT_GT(std::abs(mean), 10.0 * stderr_mean);  // the drift's flux is resolved
+}
+
 TEST(CoarseGrainer, ParticlesOutsideTheBoxAreWrapped) {
   const double Lx = 20.0, Ly = 5.0, x_lo = -10.0;
   const int bins = 10;
