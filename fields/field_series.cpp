@@ -39,6 +39,7 @@ const std::vector<FieldColumn>& field_columns() {
       {"count", &FieldSnapshot::count, &FieldSnapshot::count_stderr},
       {"P_xx", &FieldSnapshot::P_xx, &FieldSnapshot::P_xx_stderr},
       {"P_yy", &FieldSnapshot::P_yy, &FieldSnapshot::P_yy_stderr},
+      {"kinetic_energy", &FieldSnapshot::kinetic_energy, nullptr},
       {"energy_flux_x", &FieldSnapshot::energy_flux_x, nullptr},
   };
   return columns;

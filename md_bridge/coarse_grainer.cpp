@@ -277,8 +277,12 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
     a->assign(bins, kNaN);
   }
   const double area = dx_ * grid_.Ly;
+  f.kinetic_energy.resize(bins);
   f.energy_flux_x.resize(bins);
-  for (int i = 0; i < bins; ++i) f.energy_flux_x[i] = 0.5 * m.mv2vx[i] / area;
+  for (int i = 0; i < bins; ++i) {
+    f.kinetic_energy[i] = 0.5 * m.mv2[i] / area;
+    f.energy_flux_x[i] = 0.5 * m.mv2vx[i] / area;
+  }
   for (int i = 0; i < bins; ++i) {
     const BinPressure p = bin_pressure(m, i, area);
     f.P_xx[i] = p.xx, f.P_yy[i] = p.yy, f.P_xx_stderr[i] = p.xx_stderr;

@@ -94,8 +94,9 @@ struct Moments {
 // n T_a sqrt(2 / (N_eff - 1)), and the sampling error of the virial sum, sqrt(2 sum w^2 W_aa^2)
 // / A_bin (independent contacts, each shared in two equal halves). P_xx, P_yy are NaN where T is,
 // and everywhere when the moments carry no contact virial (Moments::has_virial).
-// Kinetic energy flux along x in the box frame: energy_flux_x = (1/2) sum w m |c|^2 c_x / A_bin,
-// a plain sum, without the bin's mean flow removed. The heat flux relative to a flow is formed
+// Kinetic energy and its flux along x in the box frame: kinetic_energy = (1/2) sum w m |c|^2 /
+// A_bin and energy_flux_x = (1/2) sum w m |c|^2 c_x / A_bin, plain sums without the bin's mean
+// flow removed. The heat flux relative to a flow is formed
 // from it at the level of a mode (compare/heat_flux_fit.hpp): removing each bin's own sample
 // mean would bias a third moment by about -3/N for N particles per bin. The contact (collisional)
 // transfer of energy is not in it.

@@ -584,15 +584,11 @@ TEST(CoarseGrainer, EnergySplitAndMomentum) {
   EXPECT_NEAR(e.kinetic_macro_x / e.macro_noise_x, 1.0, 4.0 * std::sqrt(2.0 / bins));
 }
 
-// Known answer 6. Atoms a little outside the box (LAMMPS between neighbour-list rebuilds,
-// docs/physics.md §10), or whole periods away, count in the bin of their periodic image: the
-// moments equal those of the wrapped sample (plain bins exactly; smooth kernels to round-off,
-// 1e-12, since x - x_lo differs in its last bits). The edges: x_lo + Lx is x_lo (bin 0), a hair
-// below x_lo is in the last bin, a hair above x_lo + Lx in the first.
-// The kinetic energy flux (1/2) sum m |v|^2 v_x per unit area: exact sums on hand-placed particles
-// (bins), the whole box's flux conserved by every kernel (each particle's weights add up to one),
-// and a drifting Maxwellian's enthalpy flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x]
-// = U (U^2 + 4 T/m) for a drift U along x, within 4 standard errors of the particles' own scatter.
+// Known answer 7. The kinetic energy (1/2) sum m |v|^2 and its flux (1/2) sum m |v|^2 v_x per
+// unit area: exact sums on hand-placed particles (bins), the whole box's energy and flux conserved
+// by every kernel (each particle's weights add up to one), and a drifting Maxwellian's enthalpy
+// flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x] = U (U^2 + 4 T/m) for a drift U along
+// x, within 4 standard errors of the particles' own scatter.
 TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   const double Lx = 4.0, Ly = 2.0;
   const CoarseGrainer bins(make_grid(0.0, Lx, Ly, 4, "bin", 0.0));
@@ -608,25 +604,31 @@ TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   EXPECT_EQ(f.energy_flux_x[1], 0.0);
   EXPECT_EQ(f.energy_flux_x[2], 0.0);
   EXPECT_DOUBLE_EQ(f.energy_flux_x[3], 2.5 / area);
+  EXPECT_DOUBLE_EQ(f.kinetic_energy[0], (5.0 + 4.5) / area);
+  EXPECT_DOUBLE_EQ(f.kinetic_energy[2], 12.5 / area);
+  EXPECT_DOUBLE_EQ(f.kinetic_energy[3], 1.25 / area);
 
   std::mt19937_64 rng(31);
   const double U = 0.3, T = 1.0;
   const int N = 200000;
   const Particles gas = maxwellian(
       N, 0.0, 40.0, 10.0, T, [U](double) { return U; }, [](double) { return 0.0; }, rng);
-  double sum = 0.0, sum2 = 0.0;
+  double sum = 0.0, sum2 = 0.0, kinetic = 0.0;
   for (int i = 0; i < gas.size(); ++i) {
     const double vx = gas.v[3 * i], vy = gas.v[3 * i + 1];
     const double j = 0.5 * gas.m[i] * (vx * vx + vy * vy) * vx;
     sum += j, sum2 += j * j;
+    kinetic += 0.5 * gas.m[i] * (vx * vx + vy * vy);
   }
   for (const auto& k : kKernels) {
     SCOPED_TRACE(k.name);
     const CoarseGrainer cg(make_grid(0.0, 40.0, 10.0, 16, k.name, k.width_in_bins * 2.5));
     const FieldSnapshot g = cg.fields(grain(cg, gas));
-    double total = 0.0;
+    double total = 0.0, energy = 0.0;
     for (double j : g.energy_flux_x) total += j * 2.5 * 10.0;
+    for (double e : g.kinetic_energy) energy += e * 2.5 * 10.0;
     EXPECT_NEAR(total, sum, 1e-9 * std::sqrt(sum2));
+    EXPECT_NEAR(energy, kinetic, 1e-12 * kinetic);
   }
   const double mean = sum / N;
   const double stderr_mean = std::sqrt((sum2 / N - mean * mean) / N);
@@ -634,6 +636,11 @@ TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   EXPECT_GT(std::abs(mean), 10.0 * stderr_mean);  // the drift's flux is resolved
 }
 
+// Known answer 6. Atoms a little outside the box (LAMMPS between neighbour-list rebuilds,
+// docs/physics.md §10), or whole periods away, count in the bin of their periodic image: the
+// moments equal those of the wrapped sample (plain bins exactly; smooth kernels to round-off,
+// 1e-12, since x - x_lo differs in its last bits). The edges: x_lo + Lx is x_lo (bin 0), a hair
+// below x_lo is in the last bin, a hair above x_lo + Lx in the first.
 TEST(CoarseGrainer, ParticlesOutsideTheBoxAreWrapped) {
   const double Lx = 20.0, Ly = 5.0, x_lo = -10.0;
   const int bins = 10;
