@@ -397,6 +397,21 @@ MdOutcome run_particle_part(RunContext& c) {
 void measure_transport_part(RunContext& c, const CompareScene& compare_scene, const MdOutcome& md) {
   const CompareScene::Transport& transport = *compare_scene.transport;
   try {
+    if (const compare::TransportFluxFit* kind =
+            compare::find_transport_flux_fit(transport.coefficient)) {
+      const HeatFluxMeasurement m =
+          measure_heat_flux(*kind, transport, compare_scene.closures, c.scene, *c.md_scene, md);
+      write_output(c.ranks, c.work / "results.h5",
+                   [&] { write_heat_flux_results(c.work / "results.h5", m); });
+      c.summary["transport"] = heat_flux_summary(m);
+      c.log.info(
+          "transport: from the particles' heat flux, kappa = {:.4g} +- {:.4g} and mu = {:.4g} +- "
+          "{:.4g} of the elastic dilute values, Burnett theta = {:.3g} +- {:.2g} (correlation "
+          "{:.3g}, chi2 {:.3g} for {} degrees of freedom)",
+          m.fit.conductivity, m.fit.conductivity_error, m.fit.mu, m.fit.mu_error, m.fit.burnett,
+          m.fit.burnett_error, m.fit.correlation, m.fit.chi2, m.fit.degrees_of_freedom);
+      return;
+    }
     if (const compare::TransportPair* pair = compare::find_transport_pair(transport.coefficient)) {
       const TransportPairMeasurement m = measure_transport_pair(
           *pair, transport, compare_scene.closures, c.scene, *c.md_scene, md);

@@ -140,4 +140,45 @@ void write_transport_results(const std::filesystem::path& file, const TransportM
   h5::write_matrix(g, "hydro_grid", flat, m.grid.factors.size());
 }
 
+nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& c : m.coefficients) {
+    nlohmann::json e = measured_against_closures(c.measured, c.error, c.closures);
+    e.update({
+        {"sigmas_from_zero", number_or_null(c.measured / c.error)},
+        {"method", m.kind.name},
+        {"correlation", number_or_null(m.fit.correlation)},
+        {"closure", m.closure},
+        {"chi2", number_or_null(m.fit.chi2)},
+        {"degrees_of_freedom", m.fit.degrees_of_freedom},
+        {"t_first", number_or_null(m.t.front())},
+        {"t_last", number_or_null(m.t.back())},
+    });
+    out[c.name] = e;
+  }
+  return out;
+}
+
+void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMeasurement& m) {
+  H5::Exception::dontPrint();
+  H5::H5File h5(file.string(), H5F_ACC_RDWR);
+  H5::Group top =
+      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
+  H5::Group g = top.createGroup(m.kind.name);
+  h5::write_attribute(g, "method", m.kind.name);
+  h5::write_attribute(g, "closure", m.closure);
+  for (const auto& c : m.coefficients) {
+    h5::write_attribute(g, c.name + "_measured", c.measured);
+    h5::write_attribute(g, c.name + "_error", c.error);
+  }
+  h5::write_attribute(g, "correlation", m.fit.correlation);
+  h5::write_attribute(g, "chi2", m.fit.chi2);
+  h5::write_attribute(g, "degrees_of_freedom", double(m.fit.degrees_of_freedom));
+  h5::write_vector(g, "t", m.t);
+  h5::write_vector(g, "response", m.fit.response);
+  h5::write_vector(g, "response_error", m.fit.response_error);
+  h5::write_vector(g, "fitted", m.fit.fitted);
+  h5::write_vector(g, "navier_stokes", m.fit.navier_stokes);
+}
+
 }  // namespace granvv::app

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
 
+#include "models/heat_flux_measurement.hpp"
 #include "models/transport_measurement.hpp"
 #include "models/transport_pair_measurement.hpp"
 
@@ -29,5 +30,15 @@ nlohmann::json transport_pair_summary(const TransportPairMeasurement& m);
 // residual's error and the fitted hydro; the two factor axes and the fit's numbers as attributes.
 void write_transport_pair_results(const std::filesystem::path& file,
                                   const TransportPairMeasurement& m);
+
+// kappa and mu from the particles' heat flux (and the Burnett term), each an entry
+// {"measured", "error", "closures", "closure_deviation_sigmas"} with `sigmas_from_zero`,
+// `method` (the compare.transport name), the `correlation` of kappa's and mu's errors, the fit's
+// chi^2 and degrees of freedom, and the fitted snapshots' first and last scaled times.
+nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m);
+
+// /transport/<name>: t, the response q / (k kappa0 T) with its jackknife error, the fit and its
+// Navier-Stokes part; the coefficients and the fit's numbers as attributes.
+void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMeasurement& m);
 
 }  // namespace granvv::app

@@ -104,7 +104,8 @@ AtlasSetup atlas_setup(const std::string& case_name, const std::vector<std::stri
   }
   if (const auto compare = compare_scene_from(config);
       compare && compare->transport &&
-      !compare::find_transport_pair(compare->transport->coefficient)) {
+      !compare::find_transport_pair(compare->transport->coefficient) &&
+      !compare::find_transport_flux_fit(compare->transport->coefficient)) {
     scene.transport_coefficient = compare->transport->coefficient;
   }
   const std::string initial_type = hydro.initial.type;

@@ -111,4 +111,18 @@ const TransportPair* find_transport_pair(const std::string& name) {
   return nullptr;
 }
 
+const std::vector<TransportFluxFit>& transport_flux_fits() {
+  static const std::vector<TransportFluxFit> table = {
+      {"heat_flux", {"conductivity", "mu"}, "burnett_heat_flux"},
+  };
+  return table;
+}
+
+const TransportFluxFit* find_transport_flux_fit(const std::string& name) {
+  for (const auto& f : transport_flux_fits()) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
 }  // namespace granvv::compare

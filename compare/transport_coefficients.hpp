@@ -65,4 +65,19 @@ const std::vector<TransportPair>& transport_pairs();
 // nullptr for a name that is no pair.
 const TransportPair* find_transport_pair(const std::string& name);
 
+// Coefficients measured at their definition from the particles' own fluxes, with no hydro in the
+// fit (compare/heat_flux_fit.hpp), named as compare.transport; each is reported under its own
+// name, `extra` (no closure has it: its closures' value is 0) beside the `coefficients`.
+struct TransportFluxFit {
+  std::string name;
+  std::vector<std::string> coefficients;  // transport_coefficients() names
+  std::string extra;
+};
+
+// heat_flux: conductivity and mu from the kinetic heat flux, beside the linear Burnett term
+// (burnett_heat_flux, theta = beta rho / eta0^2).
+const std::vector<TransportFluxFit>& transport_flux_fits();
+// nullptr for a name that is no flux fit.
+const TransportFluxFit* find_transport_flux_fit(const std::string& name);
+
 }  // namespace granvv::compare

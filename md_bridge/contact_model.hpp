@@ -26,6 +26,8 @@
 #include <limits>
 #include <string>
 
+#include "md_bridge/particle_scene.hpp"
+
 namespace granvv::md {
 
 // What the caller asks for (MD units: sigma, m, sqrt(T0/m)). The case's knobs (md.restitution,
@@ -35,8 +37,8 @@ namespace granvv::md {
 struct ContactSpec {
   static constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
   double restitution = kUnset;         // target normal restitution r in (0, 1]
-  double mass = 1.0;                   // m of each disk (> 0)
-  double diameter = 1.0;               // sigma (> 0)
+  double mass = kDiskMass;             // m of each disk (> 0)
+  double diameter = kDiskDiameter;     // sigma (> 0)
   double max_overlap = kUnset;         // delta_max, a length
   double max_relative_speed = kUnset;  // u_max: fastest relative normal speed to resolve
   int steps_per_contact = 0;           // n = tc/dt, at least 10
@@ -47,14 +49,14 @@ struct ContactSpec {
 
 // What LAMMPS gets.
 struct ContactModel {
-  double kn = 0.0;                 // normal stiffness (force/distance)
-  double gamma_n = 0.0;            // normal damping rate (1/time) passed to gran/hooke
-  double contact_time = 0.0;       // tc = pi / sqrt(kn/m_eff - gamma_n^2/4)
-  double dt = 0.0;                 // time step tc / steps_per_contact
-  double restitution = 1.0;        // target r
-  double mass = 1.0;               // m of each disk
-  double diameter = 1.0;           // sigma
-  double gamma_n_continuum = 0.0;  // the continuum formula's gamma_n, for reference
+  double kn = 0.0;                  // normal stiffness (force/distance)
+  double gamma_n = 0.0;             // normal damping rate (1/time) passed to gran/hooke
+  double contact_time = 0.0;        // tc = pi / sqrt(kn/m_eff - gamma_n^2/4)
+  double dt = 0.0;                  // time step tc / steps_per_contact
+  double restitution = 1.0;         // target r
+  double mass = kDiskMass;          // m of each disk
+  double diameter = kDiskDiameter;  // sigma
+  double gamma_n_continuum = 0.0;   // the continuum formula's gamma_n, for reference
 };
 
 // m_eff = m/2 for two equal masses.

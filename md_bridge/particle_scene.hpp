@@ -9,6 +9,10 @@
 
 namespace granvv::md {
 
+// The disks' mass and diameter: the MD units themselves (sigma = m = 1).
+inline constexpr double kDiskMass = 1.0;
+inline constexpr double kDiskDiameter = 1.0;
+
 struct ParticleScene {
   long long particles = 0;     // N
   double box_length = 0.0;     // Lx in sigma

@@ -53,6 +53,14 @@ std::vector<double> hydro_mode_amplitudes(const fields::FieldSeries& hydro,
   return out;
 }
 
+double closure_coefficient_value(const compare::TransportCoefficient& coefficient,
+                                 const HydroScene& hydro, const std::string& closure) {
+  HydroScene scene = hydro;
+  scene.closure = closure;
+  scene.factors = {};
+  return coefficient.relative_value(*make_hydro_closure(scene), scene.physics.K, 1, 1);
+}
+
 TransportMeasurement measure_transport(const CompareScene::Transport& transport,
                                        const std::vector<std::string>& closures,
                                        const HydroScene& hydro, const MdScene& md,
@@ -106,15 +114,9 @@ TransportMeasurement measure_transport(const CompareScene::Transport& transport,
 
   out.fit = compare::fit_transport_factor(out.grid, amplitudes);
   for (const std::string& name : closures) {
-    HydroScene scene = hydro;
-    scene.closure = name;
-    scene.factors = {};
-    const auto closure = make_hydro_closure(scene);
-    out.closures.emplace_back(name, coefficient.relative_value(*closure, scene.physics.K, 1, 1));
+    out.closures.emplace_back(name, closure_coefficient_value(coefficient, hydro, name));
   }
-  HydroScene own = hydro;
-  own.factors = {};
-  const double value = coefficient.relative_value(*make_hydro_closure(own), own.physics.K, 1, 1);
+  const double value = closure_coefficient_value(coefficient, hydro, hydro.closure);
   out.measured = out.fit.factor * value;
   out.error = out.fit.error * value;
   return out;

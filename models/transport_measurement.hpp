@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "compare/transport_coefficients.hpp"
 #include "compare/transport_factor_fit.hpp"
 #include "models/compare_scene.hpp"
 
@@ -45,6 +46,11 @@ void require_fit_snapshots(const std::vector<std::size_t>& kept, std::size_t sta
 // row[s] for s in kept.
 std::vector<double> select_snapshots(const std::vector<double>& row,
                                      const std::vector<std::size_t>& kept);
+
+// The closure `closure`'s value of `coefficient` relative to the elastic dilute one, at the
+// homogeneous state (n = T = 1) of `hydro` with no injected factors.
+double closure_coefficient_value(const compare::TransportCoefficient& coefficient,
+                                 const HydroScene& hydro, const std::string& closure);
 
 // hydro: the comparison's hydro (aligned with the particles, from their t = 0 fields where the
 // case says so); closures: compare.closures. Runs the hydro once per factor of the grid, on the

@@ -8,18 +8,6 @@
 #include "models/transport_measurement.hpp"
 
 namespace granvv::app {
-namespace {
-
-double closure_value(const compare::TransportCoefficient& coefficient, const HydroScene& hydro,
-                     const std::string& closure) {
-  HydroScene scene = hydro;
-  scene.closure = closure;
-  scene.factors = {};
-  return coefficient.relative_value(*make_hydro_closure(scene), scene.physics.K, 1, 1);
-}
-
-}  // namespace
-
 TransportPairMeasurement measure_transport_pair(const compare::TransportPair& pair,
                                                 const CompareScene::Transport& transport,
                                                 const std::vector<std::string>& closures,
@@ -32,8 +20,8 @@ TransportPairMeasurement measure_transport_pair(const compare::TransportPair& pa
   out.closure = hydro.closure;
   out.first.name = pair.first;
   out.second.name = pair.second;
-  out.first.closure_value = closure_value(first, hydro, hydro.closure);
-  out.second.closure_value = closure_value(second, hydro, hydro.closure);
+  out.first.closure_value = closure_coefficient_value(first, hydro, hydro.closure);
+  out.second.closure_value = closure_coefficient_value(second, hydro, hydro.closure);
   if (out.second.closure_value == 0.0) {
     throw std::runtime_error("transport: the " + hydro.closure + " closure's " + pair.second +
                              " is zero, so no factor on it can be fitted (hydro.closure: one "
@@ -112,8 +100,8 @@ TransportPairMeasurement measure_transport_pair(const compare::TransportPair& pa
     throw std::runtime_error(std::string("transport: ") + e.what());
   }
   for (const std::string& name : closures) {
-    out.first.closures.emplace_back(name, closure_value(first, hydro, name));
-    out.second.closures.emplace_back(name, closure_value(second, hydro, name));
+    out.first.closures.emplace_back(name, closure_coefficient_value(first, hydro, name));
+    out.second.closures.emplace_back(name, closure_coefficient_value(second, hydro, name));
   }
   out.first.factor = out.fit.factor_a, out.first.factor_error = out.fit.error_a;
   out.second.factor = out.fit.factor_b, out.second.factor_error = out.fit.error_b;

@@ -38,6 +38,7 @@ std::vector<std::string> transport_choices() {
   std::vector<std::string> choices = {"none"};
   for (const auto& name : compare::transport_coefficient_names()) choices.push_back(name);
   for (const auto& pair : compare::transport_pairs()) choices.push_back(pair.name);
+  for (const auto& fit : compare::transport_flux_fits()) choices.push_back(fit.name);
   return choices;
 }
 
@@ -286,7 +287,8 @@ std::vector<KeySpec> rows_without_declared() {
        "(default: [hydro.closure]); the first fills the compare and hydro blocks"},
       {"compare.transport", kString, "none", one_of(transport_choices()),
        "the transport coefficient the scene measures (docs/physics.md §14): the hydro's factor on "
-       "it fitted to the particles' mode amplitudes (\"none\" = no measurement)"},
+       "it fitted to the particles' mode amplitudes, or \"heat_flux\": kappa and mu from the "
+       "particles' own heat flux, no hydro in the fit (\"none\" = no measurement)"},
       {"compare.transport_field", kString, "v_y", one_of(fields::hydrodynamic_fields()),
        "the field whose k = 1 mode measures compare.transport"},
       {"compare.transport_phase", kString, "sin", one_of(compare::mode_phase_names()),
