@@ -179,6 +179,7 @@ void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMe
   h5::write_vector(g, "response_error", m.fit.response_error);
   h5::write_vector(g, "fitted", m.fit.fitted);
   h5::write_vector(g, "navier_stokes", m.fit.navier_stokes);
+  h5::write_vector(g, "density_part", m.fit.density_part);
 }
 
 }  // namespace granvv::app

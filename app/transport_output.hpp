@@ -37,8 +37,9 @@ void write_transport_pair_results(const std::filesystem::path& file,
 // chi^2 and degrees of freedom, and the fitted snapshots' first and last scaled times.
 nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m);
 
-// /transport/<name>: t, the response q / (k kappa0 T) with its jackknife error, the fit and its
-// Navier-Stokes part; the coefficients and the fit's numbers as attributes.
+// /transport/<name>: t, the response q / (k kappa0 T) with its jackknife error, the fit, its
+// Navier-Stokes part and mu's part (-mu dn/dx); the coefficients and the fit's numbers as
+// attributes.
 void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMeasurement& m);
 
 }  // namespace granvv::app

@@ -245,6 +245,7 @@ HeatFluxFit fit_heat_flux(const HeatFluxAmplitudes& a, double wavenumber, double
     fit.response_error.push_back(y_error[r]);
     fit.fitted.push_back(fitted(e));
     fit.navier_stokes.push_back(navier_stokes(e));
+    fit.density_part.push_back(all.X(e, 1) * p(1));
     const double z = (all.y(e) - fitted(e)) / y_error[r];
     fit.chi2 += z * z;
   }

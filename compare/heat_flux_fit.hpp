@@ -59,9 +59,9 @@ struct HeatFluxFit {
   double chi2 = 0.0;
   int degrees_of_freedom = 0;
   // Per fitted snapshot: the response y = q / (k kappa0 <T>) of the ensemble means, its
-  // jackknife error, the fit, and the fit's Navier-Stokes part alone (kappa and mu).
+  // jackknife error, the fit, its Navier-Stokes part alone (kappa and mu), and mu's part alone.
   std::vector<std::size_t> snapshots;
-  std::vector<double> response, response_error, fitted, navier_stokes;
+  std::vector<double> response, response_error, fitted, navier_stokes, density_part;
 };
 
 // The weighted least-squares fit of y_s = F_kappa T_s + F_mu n_s + b v_s / sqrt(<T>_s / m)

@@ -219,7 +219,8 @@ TEST(TransportCli, DensityModeMeasuresKappaAndMuFromTheHeatFlux) {
   EXPECT_GT(within("mu"), 2.0);
   H5::H5File h5((out / "results.h5").string(), H5F_ACC_RDONLY);
   const H5::Group g = h5.openGroup("/transport/heat_flux");
-  for (const char* name : {"t", "response", "response_error", "fitted", "navier_stokes"}) {
+  for (const char* name :
+       {"t", "response", "response_error", "fitted", "navier_stokes", "density_part"}) {
     EXPECT_EQ(h5::read_doubles(g, name).values.size(), 60u) << name;
   }
 

@@ -20,9 +20,10 @@ from .style import CMP_FIELD_TEX, CMP_HYDRO, CMP_MD, T_UNIT
                  "(docs/physics.md §14)."))
 def fig_cmp_transport(run):
     """Mode amplitude ± jackknife error against the hydro at F = 1 and the fitted F."""
-    groups = {name: G for name, G in (run.transport or {}).items() if G}
+    groups = {name: G for name, G in (run.transport or {}).items() if G and not _is_flux_fit(G)}
     if not groups:
-        raise Skip("no transport measurement (compare.transport = \"none\")")
+        raise Skip("no transport measurement matched to the hydro (compare.transport = \"none\" "
+                   "or a flux fit, drawn on its own)")
     pairs = {name: G for name, G in groups.items() if G.get("signals")}
     if pairs:
         return _pair_figure(run, *next(iter(pairs.items())))
@@ -103,3 +104,52 @@ def _pair_figure(run, name, G):
               "relative": "relative to its box mean" if any(f in ("$n$", "$T$") for f in fields) else "as it is"}
     return Drawn(fig, measured, caption_values=values)
 
+
+
+def _is_flux_fit(G):
+    """A group of coefficients fitted to the particles' own flux (no hydro in the fit)."""
+    return "response" in G["data"]
+
+
+@figure(file="cmp_heat_flux.png", section="compare", anchor="cmp_heat_flux",
+        title="The heat flux at its definition",
+        caption=("The k = 1 sine part of the particles' kinetic heat flux (relative to the "
+                 "ensemble's mean flow), divided by k κ0 T: the mean over the members with its "
+                 "jackknife error, against the fit −κ∂T/∂x − μ∂n/∂x + β∂²v/∂x² to every snapshot "
+                 "with its Navier–Stokes part (κ and μ) and μ's part alone. No hydro enters the fit "
+                 "(docs/physics.md §14)."))
+def fig_cmp_heat_flux(run):
+    """Heat-flux response ± jackknife error against the fit and its Navier-Stokes part."""
+    fits = {name: G for name, G in (run.transport or {}).items() if G and _is_flux_fit(G)}
+    if not fits:
+        raise Skip("no coefficient measured from the particles' heat flux")
+    name, G = next(iter(fits.items()))
+    t, y, e = arr(G, "t", 3), arr(G, "response", 3), arr(G, "response_error", 3)
+    fitted, ns, mu_part = arr(G, "fitted", 3), arr(G, "navier_stokes", 3), arr(G, "density_part", 3)
+    if t is None or y is None or e is None:
+        raise Skip(f"/transport/{name} has no response")
+    fig, ax = plt.subplots(figsize=(6.0, 3.4), layout="constrained")
+    ax.errorbar(t, y, yerr=e, fmt="o", ms=3, color=CMP_MD, elinewidth=0.8, capsize=0,
+                label="particles ± jackknife error")
+    if fitted is not None and fitted.size == t.size:
+        ax.plot(t, fitted, color=CMP_HYDRO, lw=1.5, label="fit: κ, μ and the Burnett term")
+    if ns is not None and ns.size == t.size:
+        ax.plot(t, ns, color="0.4", lw=1.2, ls="--", label="its Navier–Stokes part (κ, μ)")
+    if mu_part is not None and mu_part.size == t.size:
+        ax.plot(t, mu_part, color="0.4", lw=1.0, ls=":", label="μ's part, −μ∂n/∂x")
+    ax.axhline(0.0, color="0.8", lw=0.8)
+    ax.set_xlabel(T_UNIT)
+    ax.set_ylabel("q / (k κ0 T), k = 1 sine part")
+    ax.legend(fontsize=7, loc="best")
+    attrs = G["attrs"]
+    measured = []
+    for c in [k[:-len("_measured")] for k in attrs if k.endswith("_measured")]:
+        block = run.transport_summary(c) or {}
+        measured.append((f"{c}: measured", f"{fmt(num(block.get('measured')))} ± "
+                         f"{fmt(num(block.get('error')))}", None))
+        for other, value in (block.get("closures") or {}).items():
+            measured.append((f"{c}: {other} closure", fmt(num(value)), None))
+    measured.append(("correlation of the errors of κ and μ; χ² / degrees of freedom",
+                     f"{fmt(num(attrs.get('correlation')))}; {fmt(num(attrs.get('chi2')), 3)} / "
+                     f"{fmt(num(attrs.get('degrees_of_freedom')))}", None))
+    return Drawn(fig, measured)
