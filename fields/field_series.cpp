@@ -39,8 +39,8 @@ const std::vector<FieldColumn>& field_columns() {
       {"count", &FieldSnapshot::count, &FieldSnapshot::count_stderr},
       {"P_xx", &FieldSnapshot::P_xx, &FieldSnapshot::P_xx_stderr},
       {"P_yy", &FieldSnapshot::P_yy, &FieldSnapshot::P_yy_stderr},
-      {"kinetic_energy", &FieldSnapshot::kinetic_energy, nullptr},
-      {"energy_flux_x", &FieldSnapshot::energy_flux_x, nullptr},
+      {"kinetic_energy", &FieldSnapshot::kinetic_energy, &FieldSnapshot::kinetic_energy_stderr},
+      {"energy_flux_x", &FieldSnapshot::energy_flux_x, &FieldSnapshot::energy_flux_x_stderr},
   };
   return columns;
 }

@@ -29,9 +29,8 @@ struct FieldSnapshot {
   // coarse_grainer.hpp), empty for a model without it.
   std::vector<double> P_xx, P_yy, P_xx_stderr, P_yy_stderr;
   // Particles only, in the box frame (no flow removed; md_bridge/coarse_grainer.hpp): the kinetic
-  // energy density (1/2) sum m |v|^2 and its flux along x (1/2) sum m |v|^2 v_x, per unit area;
-  // their errors are the ensemble's (none per snapshot).
-  std::vector<double> kinetic_energy, energy_flux_x;
+  // energy density (1/2) sum m |v|^2 and its flux along x (1/2) sum m |v|^2 v_x, per unit area.
+  std::vector<double> kinetic_energy, energy_flux_x, kinetic_energy_stderr, energy_flux_x_stderr;
 };
 
 // Two snapshots are at the same time when their times differ by at most kSameTimeTolerance

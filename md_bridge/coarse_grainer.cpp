@@ -74,7 +74,9 @@ Moments::Moments(int bins)
       virial_yy(bins, 0.0),
       virial_xx2(bins, 0.0),
       virial_yy2(bins, 0.0),
-      mv2vx(bins, 0.0) {}
+      mv2vx(bins, 0.0),
+      energy2(bins, 0.0),
+      flux2(bins, 0.0) {}
 
 std::vector<std::vector<double>*> Moments::arrays() {
   return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
@@ -217,6 +219,8 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
       m.virial_xx2[i] += wi * wi * wxx * wxx;
       m.virial_yy2[i] += wi * wi * wyy * wyy;
       m.mv2vx[i] += wi * mc2 * cx;
+      m.energy2[i] += wi * wi * 0.25 * mc2 * mc2;
+      m.flux2[i] += wi * wi * 0.25 * mc2 * mc2 * cx * cx;
     };
 
     if (kernel_ == Kernel::bin) {
@@ -277,11 +281,21 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
     a->assign(bins, kNaN);
   }
   const double area = dx_ * grid_.Ly;
-  f.kinetic_energy.resize(bins);
-  f.energy_flux_x.resize(bins);
+  for (auto* a :
+       {&f.kinetic_energy, &f.energy_flux_x, &f.kinetic_energy_stderr, &f.energy_flux_x_stderr}) {
+    a->resize(bins);
+  }
+  // The error of a sum over independent particles, sum w X, from the particles' own scatter.
+  const auto sum_error = [&](double sum, double sum_sq, int i) {
+    const double W = m.weight[i];
+    const double variance = W > 0.0 ? sum_sq - m.weight2[i] * (sum / W) * (sum / W) : 0.0;
+    return std::sqrt(std::max(variance, 0.0)) / area;
+  };
   for (int i = 0; i < bins; ++i) {
     f.kinetic_energy[i] = 0.5 * m.mv2[i] / area;
     f.energy_flux_x[i] = 0.5 * m.mv2vx[i] / area;
+    f.kinetic_energy_stderr[i] = sum_error(0.5 * m.mv2[i], m.energy2[i], i);
+    f.energy_flux_x_stderr[i] = sum_error(0.5 * m.mv2vx[i], m.flux2[i], i);
   }
   for (int i = 0; i < bins; ++i) {
     const BinPressure p = bin_pressure(m, i, area);

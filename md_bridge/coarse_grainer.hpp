@@ -54,12 +54,14 @@ struct CoarseGrainGrid {
 //                            md_bridge/particle_engine.hpp LocalVirial)
 //   virial_xx2, virial_yy2 = sum w^2 W_xx^2, sum w^2 W_yy^2 (their sampling variance)
 //   mv2vx        = sum w m |c|^2 c_x (twice the kinetic energy flux along x, box frame)
+//   energy2, flux2 = sum w^2 (m |c|^2 / 2)^2, sum w^2 (m |c|^2 c_x / 2)^2 (their sampling variance)
 // `particles` counts the particles accumulated (exact below 2^53), `virial_particles` those
 // accumulated with a contact virial. Moments of disjoint
 // particle sets add: that is the MPI reduction and the merging of chunks.
 struct Moments {
   std::vector<double> weight, weight2, mass, mass_weight2, px, py, mv2;
   std::vector<double> mvx2, mvy2, virial_xx, virial_yy, virial_xx2, virial_yy2, mv2vx;
+  std::vector<double> energy2, flux2;
   double particles = 0.0, virial_particles = 0.0;
   // Whether every particle came with its contact virial (the pressure is then defined).
   bool has_virial() const { return particles > 0.0 && virial_particles == particles; }
@@ -96,10 +98,11 @@ struct Moments {
 // and everywhere when the moments carry no contact virial (Moments::has_virial).
 // Kinetic energy and its flux along x in the box frame: kinetic_energy = (1/2) sum w m |c|^2 /
 // A_bin and energy_flux_x = (1/2) sum w m |c|^2 c_x / A_bin, plain sums without the bin's mean
-// flow removed. The heat flux relative to a flow is formed
-// from it at the level of a mode (compare/heat_flux_fit.hpp): removing each bin's own sample
-// mean would bias a third moment by about -3/N for N particles per bin. The contact (collisional)
-// transfer of energy is not in it.
+// flow removed. Each has the single-snapshot error of a sum over independent particles,
+// sqrt(sum w^2 X^2 - sum w^2 (sum w X / sum w)^2) / A_bin, X the particle's share. The heat
+// flux relative to a flow is formed from them at the level of a mode (compare/
+// heat_flux_fit.hpp): removing each bin's own sample mean would bias a third moment by about
+// -3/N for N particles per bin. The contact (collisional) transfer of energy is not in them.
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because

@@ -586,7 +586,8 @@ TEST(CoarseGrainer, EnergySplitAndMomentum) {
 
 // Known answer 7. The kinetic energy (1/2) sum m |v|^2 and its flux (1/2) sum m |v|^2 v_x per
 // unit area: exact sums on hand-placed particles (bins), the whole box's energy and flux conserved
-// by every kernel (each particle's weights add up to one), and a drifting Maxwellian's enthalpy
+// by every kernel (each particle's weights add up to one), each bin's stated error against the
+// scatter of 16 equal bins, and a drifting Maxwellian's enthalpy
 // flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x] = U (U^2 + 4 T/m) for a drift U along
 // x, within 4 standard errors of the particles' own scatter.
 TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
@@ -629,6 +630,18 @@ TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
     for (double e : g.kinetic_energy) energy += e * 2.5 * 10.0;
     EXPECT_NEAR(total, sum, 1e-9 * std::sqrt(sum2));
     EXPECT_NEAR(energy, kinetic, 1e-12 * kinetic);
+    if (k.name != "bin") continue;
+    // The 16 bins of a uniform gas are 16 independent samples: their scatter is the error each
+    // bin states (16 values give a standard deviation to about 18 %).
+    for (const auto& [values, errors] : {std::pair{g.energy_flux_x, g.energy_flux_x_stderr},
+                                         std::pair{g.kinetic_energy, g.kinetic_energy_stderr}}) {
+      double mean = 0.0, var = 0.0, stated = 0.0;
+      for (double v : values) mean += v / 16.0;
+      for (double v : values) var += (v - mean) * (v - mean) / 15.0;
+      for (double e : errors) stated += e / 16.0;
+      EXPECT_GT(stated / std::sqrt(var), 0.6);
+      EXPECT_LT(stated / std::sqrt(var), 1.6);
+    }
   }
   const double mean = sum / N;
   const double stderr_mean = std::sqrt((sum2 / N - mean * mean) / N);
