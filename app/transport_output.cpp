@@ -3,6 +3,9 @@
 #include <H5Cpp.h>
 
 #include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "compare/transport_coefficients.hpp"
 #include "fields/hdf5_datasets.hpp"
@@ -24,6 +27,20 @@ nlohmann::json measured_against_closures(
           {"error", number_or_null(error)},
           {"closures", closures},
           {"closure_deviation_sigmas", sigmas}};
+}
+
+// Each coefficient's measured value and error, and the joint fit's correlation and chi^2, as
+// attributes of a /transport group.
+void write_joint_fit_attributes(H5::Group& g,
+                                const std::vector<std::tuple<std::string, double, double>>& values,
+                                double correlation, double chi2, int degrees_of_freedom) {
+  for (const auto& [name, measured, error] : values) {
+    h5::write_attribute(g, name + "_measured", measured);
+    h5::write_attribute(g, name + "_error", error);
+  }
+  h5::write_attribute(g, "correlation", correlation);
+  h5::write_attribute(g, "chi2", chi2);
+  h5::write_attribute(g, "degrees_of_freedom", double(degrees_of_freedom));
 }
 
 }  // namespace
@@ -83,13 +100,12 @@ void write_transport_pair_results(const std::filesystem::path& file,
   for (const auto* c : {&m.first, &m.second}) {
     h5::write_attribute(g, c->name + "_factor", c->factor);
     h5::write_attribute(g, c->name + "_factor_error", c->factor_error);
-    h5::write_attribute(g, c->name + "_measured", c->measured);
-    h5::write_attribute(g, c->name + "_error", c->error);
   }
-  h5::write_attribute(g, "correlation", m.fit.correlation);
+  write_joint_fit_attributes(g,
+                             {{m.first.name, m.first.measured, m.first.error},
+                              {m.second.name, m.second.measured, m.second.error}},
+                             m.fit.correlation, m.fit.chi2, m.fit.degrees_of_freedom);
   h5::write_attribute(g, "scale", m.fit.scale);
-  h5::write_attribute(g, "chi2", m.fit.chi2);
-  h5::write_attribute(g, "degrees_of_freedom", double(m.fit.degrees_of_freedom));
   h5::write_vector(g, "t", m.t);
   h5::write_vector(g, m.first.name + "_factors", m.grid.factors_a);
   h5::write_vector(g, m.second.name + "_factors", m.grid.factors_b);
@@ -167,13 +183,9 @@ void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMe
   H5::Group g = top.createGroup(m.kind.name);
   h5::write_attribute(g, "method", m.kind.name);
   h5::write_attribute(g, "closure", m.closure);
-  for (const auto& c : m.coefficients) {
-    h5::write_attribute(g, c.name + "_measured", c.measured);
-    h5::write_attribute(g, c.name + "_error", c.error);
-  }
-  h5::write_attribute(g, "correlation", m.fit.correlation);
-  h5::write_attribute(g, "chi2", m.fit.chi2);
-  h5::write_attribute(g, "degrees_of_freedom", double(m.fit.degrees_of_freedom));
+  std::vector<std::tuple<std::string, double, double>> values;
+  for (const auto& c : m.coefficients) values.emplace_back(c.name, c.measured, c.error);
+  write_joint_fit_attributes(g, values, m.fit.correlation, m.fit.chi2, m.fit.degrees_of_freedom);
   h5::write_vector(g, "t", m.t);
   h5::write_vector(g, "response", m.fit.response);
   h5::write_vector(g, "response_error", m.fit.response_error);

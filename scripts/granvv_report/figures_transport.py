@@ -89,21 +89,27 @@ def _pair_figure(run, name, G):
         ax.set_ylabel(f"k = 1 amplitude of {CMP_FIELD_TEX.get(field, field)} ({phase})")
         ax.legend(fontsize=7, loc="best")
         fields.append(CMP_FIELD_TEX.get(field, field))
-    measured = []
-    coefficients = [k[:-len("_measured")] for k in attrs if k.endswith("_measured")]
-    for c in coefficients:
-        block = run.transport_summary(c) or {}
-        measured.append((f"{c}: measured / elastic dilute value",
-                         f"{fmt(num(block.get('measured')))} ± {fmt(num(block.get('error')))}", None))
-        for other, value in (block.get("closures") or {}).items():
-            measured.append((f"{c}: {other} closure / elastic dilute value", fmt(num(value)), None))
-    measured.append(("correlation of the two errors; χ² / degrees of freedom",
-                     f"{fmt(num(attrs.get('correlation')))}; {fmt(num(attrs.get('chi2')), 3)} / "
-                     f"{fmt(num(attrs.get('degrees_of_freedom')))}", None))
+    measured = _joint_fit_rows(run, attrs, "correlation of the two errors")
     values = {"field": ", ".join(fields), "phase": "sin/cos", "closure": closure,
               "relative": "relative to its box mean" if any(f in ("$n$", "$T$") for f in fields) else "as it is"}
     return Drawn(fig, measured, caption_values=values)
 
+
+
+def _joint_fit_rows(run, attrs, correlation_label):
+    """The table rows of coefficients fitted jointly: each one's measured value ± error and every
+    closure's value (relative to the elastic dilute value), then the errors' correlation and χ²."""
+    rows = []
+    for c in [k[:-len("_measured")] for k in attrs if k.endswith("_measured")]:
+        block = run.transport_summary(c) or {}
+        rows.append((f"{c}: measured / elastic dilute value",
+                     f"{fmt(num(block.get('measured')))} ± {fmt(num(block.get('error')))}", None))
+        for other, value in (block.get("closures") or {}).items():
+            rows.append((f"{c}: {other} closure / elastic dilute value", fmt(num(value)), None))
+    rows.append((f"{correlation_label}; χ² / degrees of freedom",
+                 f"{fmt(num(attrs.get('correlation')))}; {fmt(num(attrs.get('chi2')), 3)} / "
+                 f"{fmt(num(attrs.get('degrees_of_freedom')))}", None))
+    return rows
 
 
 def _is_flux_fit(G):
@@ -141,15 +147,4 @@ def fig_cmp_heat_flux(run):
     ax.set_xlabel(T_UNIT)
     ax.set_ylabel("q / (k κ0 T), k = 1 sine part")
     ax.legend(fontsize=7, loc="best")
-    attrs = G["attrs"]
-    measured = []
-    for c in [k[:-len("_measured")] for k in attrs if k.endswith("_measured")]:
-        block = run.transport_summary(c) or {}
-        measured.append((f"{c}: measured", f"{fmt(num(block.get('measured')))} ± "
-                         f"{fmt(num(block.get('error')))}", None))
-        for other, value in (block.get("closures") or {}).items():
-            measured.append((f"{c}: {other} closure", fmt(num(value)), None))
-    measured.append(("correlation of the errors of κ and μ; χ² / degrees of freedom",
-                     f"{fmt(num(attrs.get('correlation')))}; {fmt(num(attrs.get('chi2')), 3)} / "
-                     f"{fmt(num(attrs.get('degrees_of_freedom')))}", None))
-    return Drawn(fig, measured)
+    return Drawn(fig, _joint_fit_rows(run, G["attrs"], "correlation of the errors of κ and μ"))
