@@ -186,6 +186,9 @@ HeatFluxFit fit_heat_flux(const HeatFluxAmplitudes& a, double wavenumber, double
     return m;
   };
   const Design all = design(snapshots, means, wavenumber, mass, diameter, burnett);
+  if (!(all.y.allFinite() && all.X.allFinite())) {
+    fail("the members' heat flux, density, temperature or flow is not finite");
+  }
   const Eigen::VectorXd T_part = all.X.col(0), n_part = all.X.col(1);
   const double correlation_Tn =
       ((T_part.array() - T_part.mean()) * (n_part.array() - n_part.mean())).sum() /

@@ -70,9 +70,10 @@ struct HeatFluxFit {
 // from refitting on every leave-one-out ensemble (the weights held), so the members' correlations
 // from snapshot to snapshot are in them. k: the mode's wavenumber 2 pi / Lx in the disks' units.
 // Throws std::invalid_argument for fewer snapshots than three more than the coefficients, bad
-// arguments, or a temperature mode proportional to the density mode (a scene at pressure
-// balance to within the scatter, |correlation| > 0.999 over the fitted snapshots: kappa and mu
-// cannot be told apart; nearer balance the errors of kappa and mu say how far they can).
+// arguments, amplitudes that are not finite, or a temperature mode proportional to the density mode
+// (a scene at pressure balance to within the scatter, |correlation| > 0.999 over the fitted
+// snapshots: kappa and mu cannot be told apart; nearer balance the errors of kappa and mu say how
+// far they can).
 HeatFluxFit fit_heat_flux(const HeatFluxAmplitudes& a, double wavenumber, double mass,
                           double diameter, std::size_t start, bool burnett);
 
