@@ -163,6 +163,7 @@ nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m) {
     e.update({
         {"sigmas_from_zero", number_or_null(c.measured / c.error)},
         {"method", m.kind.name},
+        {"contact_transfer", m.contact_transfer},
         {"correlation", number_or_null(m.fit.correlation)},
         {"closure", m.closure},
         {"chi2", number_or_null(m.fit.chi2)},
@@ -182,6 +183,7 @@ void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMe
       h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
   H5::Group g = top.createGroup(m.kind.name);
   h5::write_attribute(g, "method", m.kind.name);
+  h5::write_attribute(g, "contact_transfer", m.contact_transfer ? "yes" : "no");
   h5::write_attribute(g, "closure", m.closure);
   std::vector<std::tuple<std::string, double, double>> values;
   for (const auto& c : m.coefficients) values.emplace_back(c.name, c.measured, c.error);

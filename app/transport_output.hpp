@@ -33,7 +33,8 @@ void write_transport_pair_results(const std::filesystem::path& file,
 
 // kappa and mu from the particles' heat flux (and the Burnett term), each an entry
 // {"measured", "error", "closures", "closure_deviation_sigmas"} with `sigmas_from_zero`,
-// `method` (the compare.transport name), the `correlation` of kappa's and mu's errors, the fit's
+// `method` (the compare.transport name), `contact_transfer` (whether the flux includes the
+// contacts' transfer of energy), the `correlation` of kappa's and mu's errors, the fit's
 // chi^2 and degrees of freedom, and the fitted snapshots' first and last scaled times.
 nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m);
 

@@ -33,6 +33,10 @@ const std::vector<double>& column(const fields::FieldSnapshot& s, const char* na
   return values;
 }
 
+bool finite(double x) {
+  return std::isfinite(x);
+}
+
 double mean_of(const std::vector<double>& v) {
   double sum = 0.0;
   for (double x : v) sum += x;
@@ -87,7 +91,19 @@ HeatFluxAmplitudes heat_flux_amplitudes(const std::vector<fields::FieldSeries>& 
       const auto& vx = column(f, "v_x", bins);
       const auto& vy = column(f, "v_y", bins);
       const auto& kinetic = column(f, "kinetic_energy", bins);
-      const auto& flux = column(f, "energy_flux_x", bins);
+      std::vector<double> flux = column(f, "energy_flux_x", bins);
+      // The contact transfer where the engine measured it, with the contact part of P_xx in
+      // the enthalpy below.
+      const std::vector<double>& contact = f.contact_energy_flux_x;
+      const std::vector<double>& P_xx = f.P_xx;
+      const bool with_contact = contact.size() == bins && P_xx.size() == bins &&
+                                std::all_of(contact.begin(), contact.end(), finite) &&
+                                std::all_of(P_xx.begin(), P_xx.end(), finite);
+      if (with_contact) {
+        for (std::size_t b = 0; b < bins; ++b) flux[b] += contact[b];
+      } else if (s > 0) {
+        a.contact_transfer = false;
+      }
       std::vector<double> T(bins), velocity(bins);
       double thermal = 0.0;
       for (std::size_t b = 0; b < bins; ++b) {
@@ -108,7 +124,9 @@ HeatFluxAmplitudes heat_flux_amplitudes(const std::vector<fields::FieldSeries>& 
       a.temperature[i][s] = mode_amplitude(T, ModePhase::cosine) / mean_T;
       a.density[i][s] = mode_amplitude(n, ModePhase::cosine) / mean_n;
       a.flow[i][s] = mode_amplitude(velocity, ModePhase::sine);
-      a.heat_flux[i][s] = mode_amplitude(flux, ModePhase::sine) - 2.0 * mean_e * a.flow[i][s];
+      // e + P_xx at the homogeneous state: 2 e for the kinetic part alone (2D).
+      const double enthalpy = with_contact ? mean_e + mean_of(P_xx) : 2.0 * mean_e;
+      a.heat_flux[i][s] = mode_amplitude(flux, ModePhase::sine) - enthalpy * a.flow[i][s];
       a.mean_density[i][s] = mean_n;
       a.mean_temperature[i][s] = mean_T;
     }

@@ -35,14 +35,21 @@ struct HeatFluxAmplitudes {
   std::vector<std::vector<double>> density;      // cosine part of n/<n>
   std::vector<std::vector<double>> flow;         // sine part of v_x
   std::vector<std::vector<double>> mean_density, mean_temperature;  // <n>, <T>
+  // Whether the flux includes the contact transfer of energy at every snapshot after the first
+  // (the engine measured it: the column contact_energy_flux_x is finite); the first snapshot,
+  // before any collision, has none.
+  bool contact_transfer = true;
 };
 
 // From the members' coarse-grained fields (columns n, v_x, v_y, kinetic_energy, energy_flux_x;
 // md_bridge/coarse_grainer.hpp) of disks of one mass: the thermal energy density relative to U,
 // e = E - U.p + rho |U|^2 / 2 (E the box-frame kinetic energy density, p = rho v, rho = m n),
-// T = e / n. The snapshots every member has are used. Throws std::invalid_argument for fewer
-// than 8 members, members on other bins, a missing column, a bin empty in the ensemble, or a
-// non-positive mass.
+// T = e / n (the kinetic temperature). Where a snapshot has the contact transfer of energy
+// (contact_energy_flux_x) it is added to the flux, and the enthalpy removed is e + P_xx with the
+// contact part of the pressure (the P_xx column's box mean) instead of 2 e: kappa and mu are then
+// the whole coefficients, kinetic and contact, as Enskog's. The snapshots every member has are
+// used. Throws std::invalid_argument for fewer than 8 members, members on other bins, a missing
+// column, a bin empty in the ensemble, or a non-positive mass.
 HeatFluxAmplitudes heat_flux_amplitudes(const std::vector<fields::FieldSeries>& members,
                                         double mass);
 

@@ -41,6 +41,8 @@ const std::vector<FieldColumn>& field_columns() {
       {"P_yy", &FieldSnapshot::P_yy, &FieldSnapshot::P_yy_stderr},
       {"kinetic_energy", &FieldSnapshot::kinetic_energy, &FieldSnapshot::kinetic_energy_stderr},
       {"energy_flux_x", &FieldSnapshot::energy_flux_x, &FieldSnapshot::energy_flux_x_stderr},
+      {"contact_energy_flux_x", &FieldSnapshot::contact_energy_flux_x,
+       &FieldSnapshot::contact_energy_flux_x_stderr},
   };
   return columns;
 }

@@ -31,6 +31,9 @@ struct FieldSnapshot {
   // Particles only, in the box frame (no flow removed; md_bridge/coarse_grainer.hpp): the kinetic
   // energy density (1/2) sum m |v|^2 and its flux along x (1/2) sum m |v|^2 v_x, per unit area.
   std::vector<double> kinetic_energy, energy_flux_x, kinetic_energy_stderr, energy_flux_x_stderr;
+  // Particles only: the contact (collisional) transfer of energy along x per unit area, box
+  // frame, NaN where the engine does not measure it.
+  std::vector<double> contact_energy_flux_x, contact_energy_flux_x_stderr;
 };
 
 // Two snapshots are at the same time when their times differ by at most kSameTimeTolerance

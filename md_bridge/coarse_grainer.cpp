@@ -76,7 +76,9 @@ Moments::Moments(int bins)
       virial_yy2(bins, 0.0),
       mv2vx(bins, 0.0),
       energy2(bins, 0.0),
-      flux2(bins, 0.0) {}
+      flux2(bins, 0.0),
+      contact_flux(bins, 0.0),
+      contact_flux2(bins, 0.0) {}
 
 std::vector<std::vector<double>*> Moments::arrays() {
   return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
@@ -100,6 +102,7 @@ Moments& Moments::operator+=(const Moments& other) {
   }
   particles += other.particles;
   virial_particles += other.virial_particles;
+  contact_flux_particles += other.contact_flux_particles;
   return *this;
 }
 
@@ -149,8 +152,8 @@ std::vector<double> CoarseGrainer::bin_centres() const {
 }
 
 void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, const double* mass,
-                               int n, int stride, const double* virial_xx,
-                               const double* virial_yy) const {
+                               int n, int stride, const double* virial_xx, const double* virial_yy,
+                               const double* contact_flux_x) const {
   if (n < 0) throw std::invalid_argument("coarse-graining: particle count " + std::to_string(n));
   if (stride < 2) throw std::invalid_argument("coarse-graining: stride " + std::to_string(stride));
   if (m.bins() != grid_.bins) {
@@ -199,10 +202,11 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
     const double mc2 = mp * (cx * cx + cy * cy);
     const double wxx = virial_xx ? virial_xx[p] : 0.0;
     const double wyy = virial_yy ? virial_yy[p] : 0.0;
-    if (!std::isfinite(wxx) || !std::isfinite(wyy)) {
+    const double jx = contact_flux_x ? contact_flux_x[p] : 0.0;
+    if (!std::isfinite(wxx) || !std::isfinite(wyy) || !std::isfinite(jx)) {
       throw std::invalid_argument("coarse-graining: particle " + std::to_string(p) +
                                   " has contact virial (" + describe(wxx) + ", " + describe(wyy) +
-                                  ")");
+                                  ") and contact energy flux " + describe(jx));
     }
     const auto add = [&](int i, double wi) {
       m.weight[i] += wi;
@@ -221,6 +225,8 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
       m.mv2vx[i] += wi * mc2 * cx;
       m.energy2[i] += wi * wi * 0.25 * mc2 * mc2;
       m.flux2[i] += wi * wi * 0.25 * mc2 * mc2 * cx * cx;
+      m.contact_flux[i] += wi * jx;
+      m.contact_flux2[i] += wi * wi * jx * jx;
     };
 
     if (kernel_ == Kernel::bin) {
@@ -259,6 +265,7 @@ void CoarseGrainer::accumulate(Moments& m, const double* x, const double* v, con
   }
   m.particles += n;
   if (with_virial) m.virial_particles += n;
+  if (contact_flux_x) m.contact_flux_particles += n;
 }
 
 Moments CoarseGrainer::accumulate(const double* x, const double* v, const double* mass, int n,
@@ -296,6 +303,14 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
     f.energy_flux_x[i] = 0.5 * m.mv2vx[i] / area;
     f.kinetic_energy_stderr[i] = sum_error(0.5 * m.mv2[i], m.energy2[i], i);
     f.energy_flux_x_stderr[i] = sum_error(0.5 * m.mv2vx[i], m.flux2[i], i);
+  }
+  f.contact_energy_flux_x.assign(bins, kNaN);
+  f.contact_energy_flux_x_stderr.assign(bins, kNaN);
+  if (m.has_contact_flux()) {
+    for (int i = 0; i < bins; ++i) {
+      f.contact_energy_flux_x[i] = m.contact_flux[i] / area;
+      f.contact_energy_flux_x_stderr[i] = std::sqrt(m.contact_flux2[i]) / area;
+    }
   }
   for (int i = 0; i < bins; ++i) {
     const BinPressure p = bin_pressure(m, i, area);

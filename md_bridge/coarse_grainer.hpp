@@ -55,16 +55,20 @@ struct CoarseGrainGrid {
 //   virial_xx2, virial_yy2 = sum w^2 W_xx^2, sum w^2 W_yy^2 (their sampling variance)
 //   mv2vx        = sum w m |c|^2 c_x (twice the kinetic energy flux along x, box frame)
 //   energy2, flux2 = sum w^2 (m |c|^2 / 2)^2, sum w^2 (m |c|^2 c_x / 2)^2 (their sampling variance)
+//   contact_flux, contact_flux2 = sum w J_x, sum w^2 J_x^2: the particles' contact energy flux
+//                 shares (ParticleEngine LocalVirial::energy_flux_x) and their sampling variance
 // `particles` counts the particles accumulated (exact below 2^53), `virial_particles` those
-// accumulated with a contact virial. Moments of disjoint
-// particle sets add: that is the MPI reduction and the merging of chunks.
+// accumulated with a contact virial, `contact_flux_particles` those with a contact energy flux.
+// Moments of disjoint particle sets add: that is the MPI reduction and the merging of chunks.
 struct Moments {
   std::vector<double> weight, weight2, mass, mass_weight2, px, py, mv2;
   std::vector<double> mvx2, mvy2, virial_xx, virial_yy, virial_xx2, virial_yy2, mv2vx;
-  std::vector<double> energy2, flux2;
-  double particles = 0.0, virial_particles = 0.0;
+  std::vector<double> energy2, flux2, contact_flux, contact_flux2;
+  double particles = 0.0, virial_particles = 0.0, contact_flux_particles = 0.0;
   // Whether every particle came with its contact virial (the pressure is then defined).
   bool has_virial() const { return particles > 0.0 && virial_particles == particles; }
+  // Whether every particle came with its contact energy flux.
+  bool has_contact_flux() const { return particles > 0.0 && contact_flux_particles == particles; }
 
   Moments() = default;
   explicit Moments(int bins);
@@ -102,7 +106,9 @@ struct Moments {
 // sqrt(sum w^2 X^2 - sum w^2 (sum w X / sum w)^2) / A_bin, X the particle's share. The heat
 // flux relative to a flow is formed from them at the level of a mode (compare/
 // heat_flux_fit.hpp): removing each bin's own sample mean would bias a third moment by about
-// -3/N for N particles per bin. The contact (collisional) transfer of energy is not in them.
+// -3/N for N particles per bin. The contact (collisional) transfer of energy is not in them:
+// contact_energy_flux_x = sum w J_x / A_bin is, with the error sqrt(sum w^2 J_x^2) / A_bin of
+// independent contacts, NaN when the moments carry none (Moments::has_contact_flux).
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because
@@ -161,10 +167,11 @@ class CoarseGrainer {
   // between neighbour-list rebuilds, docs/physics.md §10) are wrapped periodically; y is not read.
   // Throws std::invalid_argument on n < 0, stride < 2, a wrong-sized m, a non-finite position.
   // virial_xx, virial_yy (both or neither): each particle's contact virial share, which adds
-  // the virial moments and counts the particles in Moments::virial_particles.
+  // the virial moments and counts the particles in Moments::virial_particles; contact_flux_x:
+  // each particle's contact energy flux share, counted in Moments::contact_flux_particles.
   void accumulate(Moments& m, const double* x, const double* v, const double* mass, int n,
                   int stride = 3, const double* virial_xx = nullptr,
-                  const double* virial_yy = nullptr) const;
+                  const double* virial_yy = nullptr, const double* contact_flux_x = nullptr) const;
   Moments accumulate(const double* x, const double* v, const double* mass, int n,
                      int stride = 3) const;
 

@@ -10,18 +10,20 @@ void CollisionVirialTally::clear() {
 }
 
 void CollisionVirialTally::begin(std::size_t disks) {
-  sum_.assign(2 * disks, 0.0);
+  sum_.assign(kPerParticle * disks, 0.0);
 }
 
 void CollisionVirialTally::finish(double interval) {
   last_ = LocalVirial{};
   if (!(interval > 0.0)) return;
-  const std::size_t particles = sum_.size() / 2;
+  const std::size_t particles = sum_.size() / kPerParticle;
   last_.xx.resize(particles);
   last_.yy.resize(particles);
+  last_.energy_flux_x.resize(particles);
   for (std::size_t k = 0; k < particles; ++k) {
-    last_.xx[k] = sum_[2 * k] / interval;
-    last_.yy[k] = sum_[2 * k + 1] / interval;
+    last_.xx[k] = sum_[kPerParticle * k] / interval;
+    last_.yy[k] = sum_[kPerParticle * k + 1] / interval;
+    last_.energy_flux_x[k] = sum_[kPerParticle * k + 2] / interval;
   }
 }
 

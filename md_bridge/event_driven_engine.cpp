@@ -364,6 +364,7 @@ void EventDrivenEngine::collide(int i, int j, double now) {
     }
     last_impact_[std::size_t(i)] = last_impact_[std::size_t(j)] = now;
     const double k = normal_impulse(-closing, r) / separation2;  // J / |r|
+    const double energy_a = a.vx * a.vx + a.vy * a.vy, energy_b = b.vx * b.vx + b.vy * b.vy;
     // New velocities, and the epoch positions moved so that the positions now stay.
     a.vx += k * dx;
     a.vy += k * dy;
@@ -381,7 +382,10 @@ void EventDrivenEngine::collide(int i, int j, double now) {
         std::clamp(int(std::floor((mid / options_.box_length + 0.5) * options_.virial_bins)), 0,
                    options_.virial_bins - 1);
     virial_sum_[std::size_t(bin)] += k * separation2;
-    tally_.add(id_[std::size_t(i)], id_[std::size_t(j)], k * dx * dx, k * dy * dy);
+    // (dE_a - dE_b) / 2 moves from b to a (unit mass: dE = d|v|^2 / 2).
+    const double transfer =
+        0.25 * ((a.vx * a.vx + a.vy * a.vy - energy_a) - (b.vx * b.vx + b.vy * b.vy - energy_b));
+    tally_.add(id_[std::size_t(i)], id_[std::size_t(j)], k * dx * dx, k * dy * dy, dx * transfer);
   }
   ++count_[std::size_t(i)];
   ++count_[std::size_t(j)];

@@ -169,7 +169,7 @@ void EventDrivenEngine::restore_whole(const EngineState& state, double segment_t
   if (arrays.count("segment_virial")) {  // saved inside a segment: it goes on from there
     virial_sum_ = array("segment_virial", bins);
     tally_.begin(n);
-    tally_.continue_from(array("segment_tally", 2 * n));
+    tally_.continue_from(array("segment_tally", CollisionVirialTally::kPerParticle * n));
     segment_.open = true;
     segment_.begin = number("segment_begin");
     segment_.window_begin = number("segment_window_begin");

@@ -100,14 +100,17 @@ BoxSample sample_box(const CoarseGrainer& grainer, ParticleEngine& engine, doubl
   const LocalParticles p = engine.local_particles();
   const bool virial = w.xx.size() == std::size_t(p.count) && w.yy.size() == w.xx.size() &&
                       !(p.count > 0 && w.xx.empty());
+  const bool contact_flux = virial && w.energy_flux_x.size() == w.xx.size();
   Moments m(grainer.grid().bins);
   // A non-finite particle on one rank (the coarse-grainer refuses it) stops every rank here,
   // with that rank's reason, rather than leaving the others waiting in the sums below.
   on_every_rank(engine.comm(), [&] {
     grainer.accumulate(m, p.x, p.v, p.mass, p.count, 3, virial ? w.xx.data() : nullptr,
-                       virial ? w.yy.data() : nullptr);
+                       virial ? w.yy.data() : nullptr,
+                       contact_flux ? w.energy_flux_x.data() : nullptr);
   });
   if (virial) m.virial_particles = m.particles;  // also a rank without particles
+  if (contact_flux) m.contact_flux_particles = m.particles;
   allreduce(m, engine.comm());
   BoxModeSums modes = box_mode_sums(p.x, p.v, p.mass, p.count, lx, ly);
   allreduce(modes, engine.comm());

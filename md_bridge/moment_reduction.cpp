@@ -13,10 +13,11 @@ void allreduce(Moments& m, MPI_Comm comm) {
   const std::size_t bins = static_cast<std::size_t>(m.bins());
   // Layout: the per-bin arrays one after another, then the particle counts.
   std::vector<double> buffer;
-  buffer.reserve(arrays.size() * bins + 2);
+  buffer.reserve(arrays.size() * bins + 3);
   for (const auto* a : arrays) buffer.insert(buffer.end(), a->begin(), a->end());
   buffer.push_back(m.particles);
   buffer.push_back(m.virial_particles);
+  buffer.push_back(m.contact_flux_particles);
 
   const int rc = MPI_Allreduce(MPI_IN_PLACE, buffer.data(), static_cast<int>(buffer.size()),
                                MPI_DOUBLE, MPI_SUM, comm);
@@ -30,7 +31,8 @@ void allreduce(Moments& m, MPI_Comm comm) {
     it += static_cast<std::ptrdiff_t>(bins);
   }
   m.particles = *it++;
-  m.virial_particles = *it;
+  m.virial_particles = *it++;
+  m.contact_flux_particles = *it;
 }
 
 }  // namespace granvv::md

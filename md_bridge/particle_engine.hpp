@@ -103,8 +103,16 @@ struct LocalParticles {
 // sum over collisions of r_ij (x) Delta p_ij divided by the time since the previous sample,
 // whose expectation is the same. Both empty: no contact stress measured at this state (before
 // the first step of a run, or an engine that cannot give it); the pressure is then not defined.
+//
+// energy_flux_x: the particle's share of the contact transfer of energy along x, in the box frame
+// (energy x length / time; summed over every particle, the box's contact energy flux times the
+// area). A collision of i and j that changes their energies by dE_i, dE_j moves
+// (dE_i - dE_j) / 2 from r_j to r_i, adding x_ij (dE_i - dE_j) / 2 (half to each partner); the
+// energy it dissipates, -(dE_i + dE_j), is lost at the contact and carries no flux. Empty: not
+// measured (an engine with continuous contacts gives none).
 struct LocalVirial {
   std::vector<double> xx, yy;
+  std::vector<double> energy_flux_x;
 };
 
 // Every particle ordered by its ID, xyz triplets, on every rank.

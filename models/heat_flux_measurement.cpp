@@ -24,6 +24,7 @@ HeatFluxMeasurement measure_heat_flux(const compare::TransportFluxFit& kind,
     out.fit = compare::fit_heat_flux(a, kTwoPi / sc.box_length, md::kDiskMass, md::kDiskDiameter,
                                      static_cast<std::size_t>(transport.start), true);
     for (std::size_t s : out.fit.snapshots) out.t.push_back(sc.scaled_time(a.t[s]));
+    out.contact_transfer = a.contact_transfer;
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("transport: compare.transport = \"" + kind.name + "\": " + e.what());
   }

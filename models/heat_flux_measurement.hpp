@@ -17,6 +17,7 @@ struct HeatFluxMeasurement {
   std::string closure;    // hydro.closure
   std::vector<double> t;  // the fitted snapshots' scaled times
   compare::HeatFluxFit fit;
+  bool contact_transfer = false;  // the flux includes the contact transfer (compare/heat_flux_fit)
   // conductivity, mu and the Burnett term, in that order: measured value and error, and each
   // closure of compare.closures with its value (0 for the Burnett term: no closure has it).
   struct Coefficient {

@@ -585,11 +585,11 @@ TEST(CoarseGrainer, EnergySplitAndMomentum) {
 }
 
 // Known answer 7. The kinetic energy (1/2) sum m |v|^2 and its flux (1/2) sum m |v|^2 v_x per
-// unit area: exact sums on hand-placed particles (bins), the whole box's energy and flux conserved
-// by every kernel (each particle's weights add up to one), each bin's stated error against the
-// scatter of 16 equal bins, and a drifting Maxwellian's enthalpy
-// flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x] = U (U^2 + 4 T/m) for a drift U along
-// x, within 4 standard errors of the particles' own scatter.
+// unit area, and the disks' contact transfer of energy summed per bin: exact sums on hand-placed
+// particles (bins), the whole box's energy and flux conserved by every kernel (each particle's
+// weights add up to one), each bin's stated error against the scatter of 16 equal bins, and a
+// drifting Maxwellian's enthalpy flux U (rho U^2/2 + n T + p), p = n T in 2D: E[|v|^2 v_x] = U (U^2
+// + 4 T/m) for a drift U along x, within 4 standard errors of the particles' own scatter.
 TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   const double Lx = 4.0, Ly = 2.0;
   const CoarseGrainer bins(make_grid(0.0, Lx, Ly, 4, "bin", 0.0));
@@ -608,6 +608,17 @@ TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   EXPECT_DOUBLE_EQ(f.kinetic_energy[0], (5.0 + 4.5) / area);
   EXPECT_DOUBLE_EQ(f.kinetic_energy[2], 12.5 / area);
   EXPECT_DOUBLE_EQ(f.kinetic_energy[3], 1.25 / area);
+  EXPECT_TRUE(std::isnan(f.contact_energy_flux_x[0]));  // no contact transfer given
+  // With each disk's share of the contact transfer of energy: their sum per bin and area.
+  const std::vector<double> zero(4, 0.0), shares = {0.5, -0.25, 2.0, 1.0};
+  Moments with(4);
+  bins.accumulate(with, few.x.data(), few.v.data(), few.m.data(), few.size(), 3, zero.data(),
+                  zero.data(), shares.data());
+  const FieldSnapshot c = bins.fields(with);
+  EXPECT_DOUBLE_EQ(c.contact_energy_flux_x[0], 0.25 / area);
+  EXPECT_EQ(c.contact_energy_flux_x[1], 0.0);
+  EXPECT_DOUBLE_EQ(c.contact_energy_flux_x[2], 2.0 / area);
+  EXPECT_DOUBLE_EQ(c.contact_energy_flux_x_stderr[0], std::sqrt(0.25 + 0.0625) / area);
 
   std::mt19937_64 rng(31);
   const double U = 0.3, T = 1.0;

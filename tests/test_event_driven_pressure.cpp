@@ -3,7 +3,7 @@
 // coarse-grainer an elastic gas at phi = 0.1 has Henderson's P/(nT) = 1 + 2 phi chi, like the
 // LAMMPS engine's (tests/test_particle_pressure.cpp); and the equation of state at phi = 0.3
 // and 0.5 against the hard-disk EOS of the literature (the sweep over phi = 0.05 ... 0.5 is
-// tests/slow_event_driven.cpp).
+// tests/slow_event_driven.cpp); the contact transfer of energy on one head-on collision.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,6 +34,7 @@ TEST(EventDrivenPressure, EveryDisksShareAddsUpToTheBoxCollisionVirial) {
     const LocalVirial w = engine.local_virial();
     ASSERT_EQ(w.xx.size(), std::size_t(scene.particles));
     ASSERT_EQ(w.yy.size(), w.xx.size());
+    ASSERT_EQ(w.energy_flux_x.size(), w.xx.size());
     double xx = 0.0, yy = 0.0;
     for (std::size_t i = 0; i < w.xx.size(); ++i) {
       EXPECT_GE(w.xx[i], 0.0) << i;
@@ -49,6 +50,31 @@ TEST(EventDrivenPressure, EveryDisksShareAddsUpToTheBoxCollisionVirial) {
   }
   engine.set_up(sample_particles(scene, hydro::uniform_fields(), 5));
   EXPECT_TRUE(engine.local_virial().xx.empty());
+}
+
+// The contact transfer of energy (LocalVirial::energy_flux_x) on one head-on collision: a disk at
+// x = -2 moving at 1 hits a disk at rest at x = 0 (at t = 1, contact at distance sigma = 1), and
+// leaves with (1 - r)/2 while the other leaves with (1 + r)/2. The energy moved forward across the
+// contact is (dE_a - dE_b)/2 = -(1 + r)/4 from b to a, at x_a - x_b = -1: (1 + r)/4 along +x,
+// half to each disk, divided by the interval (5). Elastic and r = 0.5.
+TEST(EventDrivenPressure, AHeadOnCollisionCarriesEnergyAcrossTheContact) {
+  MpiEnvironment::ensure();
+  for (double r : {1.0, 0.5}) {
+    SCOPED_TRACE(r);
+    const ParticleScene scene = scene_from_particles(2, 0.01, 10.0, r);
+    EventDrivenEngine engine(granvv::testing::event_driven_options(scene, 1));
+    ParticleSample two;
+    two.x = {-2.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    two.v = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    engine.set_up(two);
+    engine.advance_to(5.0);
+    const LocalVirial w = engine.local_virial();
+    ASSERT_EQ(w.energy_flux_x.size(), 2u);
+    const double expected = (1.0 + r) / 4.0 / 5.0;
+    EXPECT_NEAR(w.energy_flux_x[0], 0.5 * expected, 1e-12);
+    EXPECT_NEAR(w.energy_flux_x[1], 0.5 * expected, 1e-12);
+    EXPECT_NEAR(engine.local_particles().v[3], 0.5 * (1.0 + r), 1e-12);  // b's velocity
+  }
 }
 
 // An elastic gas of 1000 hard disks at phi = 0.1 through run_md (the coarse-grainer's P_xx,

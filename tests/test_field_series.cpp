@@ -93,6 +93,8 @@ TEST(FieldSeries, CellsWithMovingPositionsAndNoErrorsReadBackExactly) {
                          {},
                          {},
                          {},
+                         {},
+                         {},
                          {}});
   s.snapshots.push_back({0.5,
                          "final",
@@ -114,16 +116,37 @@ TEST(FieldSeries, CellsWithMovingPositionsAndNoErrorsReadBackExactly) {
                          {},
                          {},
                          {},
+                         {},
+                         {},
                          {}});
   expect_same_series(s, round_trip(s, "cells"));
 }
 
 TEST(FieldSeries, BinsWithErrorsCountsAndNaNReadBackExactly) {
   FieldSeries s = FieldSeries::on_bins(-2.0, 4.0, 2);
-  s.snapshots.push_back(
-      {0.0,          "output",     {-1, 1},      {0.5, 0.7},   {0.1, kNaN}, {0.2, kNaN}, {1, kNaN},
-       {0.01, 0.02}, {0.03, kNaN}, {0.04, kNaN}, {0.05, kNaN}, {3, 0},      {0.5, 0.1},  {},
-       {},           {},           {},           {},           {},          {},          {}});
+  s.snapshots.push_back({0.0,
+                         "output",
+                         {-1, 1},
+                         {0.5, 0.7},
+                         {0.1, kNaN},
+                         {0.2, kNaN},
+                         {1, kNaN},
+                         {0.01, 0.02},
+                         {0.03, kNaN},
+                         {0.04, kNaN},
+                         {0.05, kNaN},
+                         {3, 0},
+                         {0.5, 0.1},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {},
+                         {}});
   const FieldSeries back = round_trip(s, "bins");
   expect_same_series(s, back);
   expect_same(back.bin_edges, {-2.0, 0.0, 2.0}, "edges of on_bins");
@@ -139,10 +162,10 @@ TEST(FieldSeries, EmptySeriesKeepsItsGeometry) {
 
 TEST(FieldSeries, SnapshotsThatDisagreeInLengthAreRefused) {
   FieldSeries s;
-  s.snapshots.push_back({0.0, "initial", {0, 0.5}, {1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {},
-                         {},  {},        {},       {},     {},     {}, {},     {}, {}, {}});
-  s.snapshots.push_back({1.0, "final", {0, 0.5}, {1, 1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {},
-                         {},  {},      {},       {},        {},     {}, {},     {}, {}, {}});
+  s.snapshots.push_back({0.0, "initial", {0, 0.5}, {1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {}, {},
+                         {},  {},        {},       {},     {},     {}, {},     {}, {}, {}, {}});
+  s.snapshots.push_back({1.0, "final", {0, 0.5}, {1, 1, 1}, {0, 0}, {}, {1, 1}, {}, {}, {}, {}, {},
+                         {},  {},      {},       {},        {},     {}, {},     {}, {}, {}, {}});
   const fs::path file = scratch_file("ragged");
   H5::H5File h5(file.string(), H5F_ACC_TRUNC);
   H5::Group g = h5.createGroup("/fields");
@@ -188,12 +211,12 @@ TEST(EnsembleFieldSeries, MeanAndStandardErrorOfTwoMembersByHand) {
   // Two members: mean (a + b)/2, sample sd |a - b|/sqrt(2), error of the mean |a - b|/2.
   // A bin empty in one member (NaN) takes the other alone: its error is NaN (one value).
   FieldSeries a = FieldSeries::on_bins(0.0, 1.0, 2), b = a;
-  a.snapshots.push_back({0.0, "output", {0.25, 0.75}, {1, 3}, {0.2, kNaN}, {0, 0}, {1, 2},
-                         {},  {},       {},           {},     {10, 30},    {},     {},
-                         {},  {},       {},           {},     {},          {},     {}});
-  b.snapshots.push_back({0.0, "output", {0.25, 0.75}, {3, 3}, {0.4, 0.5}, {0, 0}, {3, 2},
-                         {},  {},       {},           {},     {30, 30},   {},     {},
-                         {},  {},       {},           {},     {},         {},     {}});
+  a.snapshots.push_back({0.0, "output", {0.25, 0.75}, {1, 3},   {0.2, kNaN}, {0, 0}, {1, 2}, {},
+                         {},  {},       {},           {10, 30}, {},          {},     {},     {},
+                         {},  {},       {},           {},       {},          {},     {}});
+  b.snapshots.push_back({0.0, "output", {0.25, 0.75}, {3, 3},   {0.4, 0.5}, {0, 0}, {3, 2}, {},
+                         {},  {},       {},           {30, 30}, {},         {},     {},     {},
+                         {},  {},       {},           {},       {},         {},     {}});
   const FieldSeries e = granvv::compare::ensemble_field_series({a, b});
   ASSERT_EQ(e.snapshots.size(), 1u);
   const FieldSnapshot& s = e.snapshots[0];

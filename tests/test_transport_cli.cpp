@@ -180,10 +180,10 @@ TEST(TransportCli, SoundWaveMeasuresConductivityAndMuJointly) {
 
 // kappa and mu from the particles' own heat flux on the shipped density_mode (256 of its 512
 // members, r = 0.9, a few seconds): the three entries with the method, finite values and every
-// compared closure; the physics: kappa within 4 errors + 0.05 of garzo_dufty's (the kinetic
-// flux leaves out the contact transfer, 3 % at phi = 0.02, and the mode's k l = 0.16 lowers the
-// measured kappa by a few per cent, docs/physics.md §14), mu likewise and above zero by more than
-// 2 errors (at 512 members it is 5.1). /transport/heat_flux holds the fitted snapshots' curves.
+// compared closure, the contact transfer of energy included; the physics: kappa within 4 errors
+// + 0.05 of garzo_dufty's (the mode's k l = 0.16 lowers the measured kappa by a few per cent,
+// docs/physics.md §14), mu likewise and above zero by more than 2 errors (at 512 members it is
+// 5.0). /transport/heat_flux holds the fitted snapshots' curves.
 // A pressure-balanced scene (heat_mode) cannot separate kappa from mu: their errors are
 // correlated by nearly 1.
 TEST(TransportCli, DensityModeMeasuresKappaAndMuFromTheHeatFlux) {
@@ -202,6 +202,7 @@ TEST(TransportCli, DensityModeMeasuresKappaAndMuFromTheHeatFlux) {
       EXPECT_TRUE(std::isfinite(e[key].get<double>())) << key;
     }
     EXPECT_EQ(e["method"], "heat_flux");
+    EXPECT_EQ(e["contact_transfer"], true);
     EXPECT_EQ(e["degrees_of_freedom"], 60 - 3);  // 61 snapshots from the second, 3 coefficients
     for (const char* closure : {"garzo_dufty", "dilute", "enskog"}) {
       EXPECT_TRUE(e["closures"][closure].is_number()) << name << " " << closure;
