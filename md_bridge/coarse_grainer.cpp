@@ -81,13 +81,15 @@ Moments::Moments(int bins)
       contact_flux2(bins, 0.0) {}
 
 std::vector<std::vector<double>*> Moments::arrays() {
-  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
-          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2, &mv2vx};
+  return {&weight,     &weight2, &mass,    &mass_weight2, &px,           &py,
+          &mv2,        &mvx2,    &mvy2,    &virial_xx,    &virial_yy,    &virial_xx2,
+          &virial_yy2, &mv2vx,   &energy2, &flux2,        &contact_flux, &contact_flux2};
 }
 
 std::vector<const std::vector<double>*> Moments::arrays() const {
-  return {&weight, &weight2, &mass,      &mass_weight2, &px,         &py,         &mv2,
-          &mvx2,   &mvy2,    &virial_xx, &virial_yy,    &virial_xx2, &virial_yy2, &mv2vx};
+  return {&weight,     &weight2, &mass,    &mass_weight2, &px,           &py,
+          &mv2,        &mvx2,    &mvy2,    &virial_xx,    &virial_yy,    &virial_xx2,
+          &virial_yy2, &mv2vx,   &energy2, &flux2,        &contact_flux, &contact_flux2};
 }
 
 Moments& Moments::operator+=(const Moments& other) {

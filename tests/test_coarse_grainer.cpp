@@ -13,6 +13,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -447,6 +448,33 @@ TEST(CoarseGrainer, MomentsOfPartsAddUpToTheWhole) {
       EXPECT_NEAR(a.v_y[i], b.v_y[i], 1e-12);
       EXPECT_NEAR(a.T[i], b.T[i], 1e-12 * b.T[i]);
       EXPECT_NEAR(a.T_stderr[i], b.T_stderr[i], 1e-12 * b.T_stderr[i]);
+      for (const auto& [column, of_sum, of_whole] :
+           {std::tuple{"kinetic_energy", a.kinetic_energy[i], b.kinetic_energy[i]},
+            std::tuple{"energy_flux_x", a.energy_flux_x[i], b.energy_flux_x[i]},
+            std::tuple{"kinetic_energy_stderr", a.kinetic_energy_stderr[i],
+                       b.kinetic_energy_stderr[i]},
+            std::tuple{"energy_flux_x_stderr", a.energy_flux_x_stderr[i],
+                       b.energy_flux_x_stderr[i]}}) {
+        EXPECT_NEAR(of_sum, of_whole, 1e-10 * (std::abs(of_whole) + 1e-3)) << column << " " << i;
+      }
+    }
+    // The contacts' energy flux shares add up as well.
+    std::vector<double> shares(std::size_t(p.size()));
+    for (std::size_t i = 0; i < shares.size(); ++i) shares[i] = std::sin(0.1 * double(i));
+    const std::vector<double> zero(shares.size(), 0.0);
+    Moments whole_c(cg.grid().bins), part_c(cg.grid().bins), rest_c(cg.grid().bins);
+    cg.accumulate(whole_c, p.x.data(), p.v.data(), p.m.data(), p.size(), 3, zero.data(),
+                  zero.data(), shares.data());
+    cg.accumulate(part_c, p.x.data(), p.v.data(), p.m.data(), half, 3, zero.data(), zero.data(),
+                  shares.data());
+    cg.accumulate(rest_c, p.x.data() + 3 * half, p.v.data() + 3 * half, p.m.data() + half,
+                  p.size() - half, 3, zero.data() + half, zero.data() + half, shares.data() + half);
+    part_c += rest_c;
+    const FieldSnapshot c_sum = cg.fields(part_c), c_whole = cg.fields(whole_c);
+    for (int i = 0; i < cg.grid().bins; ++i) {
+      EXPECT_NEAR(c_sum.contact_energy_flux_x[i], c_whole.contact_energy_flux_x[i], 1e-12);
+      EXPECT_NEAR(c_sum.contact_energy_flux_x_stderr[i], c_whole.contact_energy_flux_x_stderr[i],
+                  1e-12);
     }
     // Accumulating chunk after chunk into the same moments is accumulating the whole.
     Moments chunked(cg.grid().bins);
