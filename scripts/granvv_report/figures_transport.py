@@ -95,7 +95,6 @@ def _pair_figure(run, name, G):
     return Drawn(fig, measured, caption_values=values)
 
 
-
 def _joint_fit_rows(run, attrs, correlation_label):
     """The table rows of coefficients fitted jointly: each one's measured value ± error and every
     closure's value (relative to the elastic dilute value), then the errors' correlation and χ²."""
@@ -119,8 +118,9 @@ def _is_flux_fit(G):
 
 @figure(file="cmp_heat_flux.png", section="compare", anchor="cmp_heat_flux",
         title="The heat flux at its definition",
-        caption=("The k = 1 sine part of the particles' kinetic heat flux (relative to the "
-                 "ensemble's mean flow), divided by k κ0 T: the mean over the members with its "
+        caption=("The k = 1 sine part of the particles' heat flux (relative to the ensemble's "
+                 "mean flow; kinetic, and the contacts' share where the engine measures it), "
+                 "divided by k κ0 T: the mean over the members with its "
                  "jackknife error, against the fit −κ∂T/∂x − μ∂n/∂x + β∂²v/∂x² to every snapshot "
                  "with its Navier–Stokes part (κ and μ) and μ's part alone. No hydro enters the fit "
                  "(docs/physics.md §14)."))
