@@ -43,6 +43,13 @@ void write_joint_fit_attributes(H5::Group& g,
   h5::write_attribute(g, "degrees_of_freedom", double(degrees_of_freedom));
 }
 
+// /transport/<name>, made in `h5` (and /transport with it on the first measurement).
+H5::Group new_transport_group(H5::H5File& h5, const std::string& name) {
+  H5::Group top =
+      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
+  return top.createGroup(name);
+}
+
 }  // namespace
 
 nlohmann::json transport_summary(const TransportMeasurement& m) {
@@ -93,9 +100,7 @@ void write_transport_pair_results(const std::filesystem::path& file,
                                   const TransportPairMeasurement& m) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
-  H5::Group top =
-      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
-  H5::Group g = top.createGroup(m.pair.name);
+  H5::Group g = new_transport_group(h5, m.pair.name);
   h5::write_attribute(g, "closure", m.closure);
   for (const auto* c : {&m.first, &m.second}) {
     h5::write_attribute(g, c->name + "_factor", c->factor);
@@ -131,9 +136,7 @@ void write_transport_pair_results(const std::filesystem::path& file,
 void write_transport_results(const std::filesystem::path& file, const TransportMeasurement& m) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
-  H5::Group top =
-      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
-  H5::Group g = top.createGroup(m.coefficient);
+  H5::Group g = new_transport_group(h5, m.coefficient);
   h5::write_attribute(g, "field", m.field);
   h5::write_attribute(g, "phase", m.phase);
   h5::write_attribute(g, "closure", m.closure);
@@ -179,9 +182,7 @@ nlohmann::json heat_flux_summary(const HeatFluxMeasurement& m) {
 void write_heat_flux_results(const std::filesystem::path& file, const HeatFluxMeasurement& m) {
   H5::Exception::dontPrint();
   H5::H5File h5(file.string(), H5F_ACC_RDWR);
-  H5::Group top =
-      h5.nameExists("/transport") ? h5.openGroup("/transport") : h5.createGroup("/transport");
-  H5::Group g = top.createGroup(m.kind.name);
+  H5::Group g = new_transport_group(h5, m.kind.name);
   h5::write_attribute(g, "method", m.kind.name);
   h5::write_attribute(g, "contact_transfer", m.contact_transfer ? "yes" : "no");
   h5::write_attribute(g, "closure", m.closure);

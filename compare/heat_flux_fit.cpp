@@ -249,13 +249,7 @@ HeatFluxFit fit_heat_flux(const HeatFluxAmplitudes& a, double wavenumber, double
     fit.burnett = to_theta * p(2);
     fit.burnett_error = std::abs(to_theta) * jackknife_error(refits[2]);
   }
-  double covariance = 0.0;
-  const double mean_0 = mean_of(refits[0]), mean_1 = mean_of(refits[1]);
-  for (std::size_t i = 0; i < members; ++i) {
-    covariance += (refits[0][i] - mean_0) * (refits[1][i] - mean_1);
-  }
-  covariance *= double(members - 1) / double(members);
-  fit.correlation = covariance / (fit.conductivity_error * fit.mu_error);
+  fit.correlation = jackknife_correlation(refits[0], refits[1]);
 
   const Eigen::VectorXd fitted = all.X * p;
   const Eigen::VectorXd navier_stokes = all.X.leftCols(2) * p.head(2);

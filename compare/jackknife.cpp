@@ -56,6 +56,18 @@ double jackknife_error(const std::vector<double>& estimates) {
   return std::sqrt((m - 1.0) / m * squares);
 }
 
+double jackknife_correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("jackknife: estimates of different counts");
+  double mean_a = 0.0, mean_b = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) mean_a += a[i], mean_b += b[i];
+  mean_a /= double(a.size()), mean_b /= double(b.size());
+  double covariance = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) covariance += (a[i] - mean_a) * (b[i] - mean_b);
+  const double m = double(a.size());
+  covariance *= (m - 1.0) / m;
+  return covariance / (jackknife_error(a) * jackknife_error(b));
+}
+
 std::vector<double> jackknife_errors(const std::vector<std::vector<double>>& samples) {
   std::vector<double> errors;
   if (samples.empty()) return errors;

@@ -23,6 +23,11 @@ std::vector<std::vector<double>> leave_one_out_means(
 // se_J of one estimate from its leave-one-out values f_(i) (NaN for fewer than two).
 double jackknife_error(const std::vector<double>& leave_one_out_estimates);
 
+// The correlation of two estimates' jackknife errors from their leave-one-out values (of equal
+// length, at least two): cov_J / (se_J(a) se_J(b)), cov_J = (M - 1)/M sum_i (a_(i) - a_(.))
+// (b_(i) - b_(.)).
+double jackknife_correlation(const std::vector<double>& a, const std::vector<double>& b);
+
 // se_J of each column of the leave-one-out samples (the error of each column mean).
 std::vector<double> jackknife_errors(const std::vector<std::vector<double>>& samples);
 

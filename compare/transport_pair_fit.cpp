@@ -277,16 +277,7 @@ PairFit fit_transport_factor_pair(const FactorPairGrid& grid,
   }
   fit.error_a = jackknife_error(refit_a);
   fit.error_b = jackknife_error(refit_b);
-  double mean_a = 0.0, mean_b = 0.0;
-  for (std::size_t i = 0; i < refit_a.size(); ++i) mean_a += refit_a[i], mean_b += refit_b[i];
-  mean_a /= double(refit_a.size()), mean_b /= double(refit_b.size());
-  double covariance = 0.0;
-  for (std::size_t i = 0; i < refit_a.size(); ++i) {
-    covariance += (refit_a[i] - mean_a) * (refit_b[i] - mean_b);
-  }
-  const double m = double(refit_a.size());
-  covariance *= (m - 1.0) / m;
-  fit.correlation = covariance / (fit.error_a * fit.error_b);
+  fit.correlation = jackknife_correlation(refit_a, refit_b);
 
   std::vector<double> fitted(h.size());
   for (std::size_t k = 0; k < h.size(); ++k) fitted[k] = fit.scale * h[k];
