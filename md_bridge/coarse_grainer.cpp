@@ -311,7 +311,8 @@ fields::FieldSnapshot CoarseGrainer::fields(const Moments& m) const {
   if (m.has_contact_flux()) {
     for (int i = 0; i < bins; ++i) {
       f.contact_energy_flux_x[i] = m.contact_flux[i] / area;
-      f.contact_energy_flux_x_stderr[i] = std::sqrt(m.contact_flux2[i]) / area;
+      // Each collision's two equal halves go together, as the virial's (bin_pressure).
+      f.contact_energy_flux_x_stderr[i] = std::sqrt(2.0 * m.contact_flux2[i]) / area;
     }
   }
   for (int i = 0; i < bins; ++i) {

@@ -107,8 +107,8 @@ struct Moments {
 // flux relative to a flow is formed from them at the level of a mode (compare/
 // heat_flux_fit.hpp): removing each bin's own sample mean would bias a third moment by about
 // -3/N for N particles per bin. The contact (collisional) transfer of energy is not in them:
-// contact_energy_flux_x = sum w J_x / A_bin is, with the error sqrt(sum w^2 J_x^2) / A_bin of
-// independent contacts, NaN when the moments carry none (Moments::has_contact_flux).
+// contact_energy_flux_x = sum w J_x / A_bin is, with the error sqrt(2 sum w^2 J_x^2) / A_bin of
+// independent contacts each shared in two equal halves (as the virial's), NaN when the moments carry none (Moments::has_contact_flux).
 
 // Whole-box energies and momentum from the summed moments.
 //   kinetic_total = sum_p m |c|^2 / 2, momentum = sum_p m c: exact for every kernel, because

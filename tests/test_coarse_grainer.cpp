@@ -646,7 +646,7 @@ TEST(CoarseGrainer, EnergyFluxIsTheBoxFrameKineticFlux) {
   EXPECT_DOUBLE_EQ(c.contact_energy_flux_x[0], 0.25 / area);
   EXPECT_EQ(c.contact_energy_flux_x[1], 0.0);
   EXPECT_DOUBLE_EQ(c.contact_energy_flux_x[2], 2.0 / area);
-  EXPECT_DOUBLE_EQ(c.contact_energy_flux_x_stderr[0], std::sqrt(0.25 + 0.0625) / area);
+  EXPECT_DOUBLE_EQ(c.contact_energy_flux_x_stderr[0], std::sqrt(2.0 * (0.25 + 0.0625)) / area);
 
   std::mt19937_64 rng(31);
   const double U = 0.3, T = 1.0;
